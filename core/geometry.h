@@ -1,0 +1,108 @@
+// Scene geometry on Embree 3: world-space triangle meshes and analytic spheres, ray queries, and the surface
+// record (Hit) that materials, lights and integrators consume.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+#include "core/texture.h"
+
+namespace lumis {
+
+struct Ray {
+  Vec3 o, d;            ///< origin, direction (need not be unit; t is in units of |d|)
+  float tmin = 0;
+  float tmax = INFINITY;
+};
+
+/// Alpha test for glTF alphaMode MASK: a hit is ignored when factor * texture alpha * vertex alpha < cutoff.
+struct AlphaMask {
+  float cutoff = 0.5f;
+  float factor = 1.0f;
+  std::optional<Texture> texture;  ///< base colour texture (alpha channel)
+};
+
+/// A world-space triangle mesh. Front faces wind counter-clockwise; the geometric normal is
+/// normalize(cross(p1 - p0, p2 - p0)).
+struct TriangleMesh {
+  std::string name;
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;     ///< per vertex, optional (empty = flat shading)
+  std::vector<Vec4> tangents;    ///< per vertex xyz + handedness w, optional
+  std::vector<Vec2> uv0, uv1;    ///< per vertex, optional
+  std::vector<Vec4> colors;      ///< per vertex RGBA (COLOR_0), optional
+  std::vector<uint32_t> indices; ///< 3 per triangle
+  int material = -1;             ///< index into the scene's materials
+  int light = -1;                ///< index into the scene's lights when emissive, else -1
+  std::optional<AlphaMask> alpha;
+
+  size_t triangle_count() const { return indices.size() / 3; }
+};
+
+struct Sphere {
+  Vec3 center;
+  float radius = 1;
+  int material = -1;  ///< -1: a pure emitter (sphere light) that only emits
+  int light = -1;
+};
+
+/// What a ray hit. Normals are unit and world-space.
+struct Hit {
+  float t = INFINITY;
+  Vec3 p;              ///< hit point
+  Vec3 ng;             ///< geometric normal of the front face (not flipped toward the ray)
+  Vec3 ns;             ///< interpolated shading normal (== ng when the mesh has none), front-face side
+  Vec4 tangent;        ///< interpolated tangent (w = handedness), zero when absent
+  Vec2 uv[2];          ///< TEXCOORD_0/1 (zero when absent)
+  Vec4 color{1, 1, 1, 1};  ///< vertex colour
+  bool front = true;   ///< the ray arrived on the front side (dot(d, ng) < 0)
+  uint32_t geom_id = ~0u, prim_id = ~0u;
+  int material = -1, light = -1;
+};
+
+/// Offset a point off a surface along its geometric normal, on the side of direction w, robustly at any scale
+/// (integer-ULP offset after Waechter & Binder, Ray Tracing Gems ch. 6).
+Vec3 offset_ray_origin(Vec3 p, Vec3 ng, Vec3 w);
+/// Ray from surface point p toward unit direction w.
+Ray spawn_ray(const Hit& from, Vec3 w);
+/// Shadow ray from surface point to a target point (the segment stops just short of the target).
+Ray spawn_ray_to(const Hit& from, Vec3 target);
+
+class Geometry {
+ public:
+  Geometry();
+  ~Geometry();
+  Geometry(const Geometry&) = delete;
+  Geometry& operator=(const Geometry&) = delete;
+
+  /// Add a mesh; returns its geometry id. Call commit() after the last add.
+  uint32_t add_mesh(TriangleMesh mesh);
+  /// Add a sphere; returns its geometry id.
+  uint32_t add_sphere(Sphere sphere);
+  /// Build the BVH.
+  void commit();
+
+  /// Closest hit in (ray.tmin, ray.tmax). The ray must be finite (checked).
+  bool intersect(const Ray& ray, Hit& hit) const;
+  /// Whether anything lies in (ray.tmin, ray.tmax).
+  bool occluded(const Ray& ray) const;
+
+  bool is_mesh(uint32_t geom_id) const;
+  const TriangleMesh& mesh(uint32_t geom_id) const;
+  const Sphere& sphere(uint32_t geom_id) const;
+  size_t geometry_count() const;
+  size_t triangle_count() const;
+  Bounds3 bounds() const;
+  /// Fill a Hit for a point given by primitive and barycentrics (used by lights sampling mesh surfaces).
+  void fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, Hit& hit) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lumis

@@ -1,0 +1,27 @@
+// Image files through OpenImageIO. Every image lumis reads or writes goes through here.
+#pragma once
+
+#include <string>
+
+#include "core/image.h"
+
+namespace lumis {
+
+/// Read an image with all its channels as float. With srgb_to_linear, 8-bit colour channels (not alpha) are
+/// decoded from the sRGB transfer curve. Throws ImageError naming the file on failure.
+Image read_image(const std::string& path, bool srgb_to_linear = false);
+
+struct WriteOptions {
+  float exposure = 0;  ///< stops, applied to display formats (png/jpg) only
+};
+
+/// Write an image, format by extension: .exr (linear half/float, all channels), .hdr, .png/.jpg (first three
+/// channels, exposure, sRGB transfer, clamp to [0,1]). Writes to a temporary name in the same folder and renames,
+/// so no half-written file exists. Throws ImageError naming the file on failure.
+void write_image(const std::string& path, const Image& image, const WriteOptions& options = {});
+
+/// sRGB transfer (linear -> encoded) and its inverse.
+float linear_to_srgb(float v);
+float srgb_to_linear(float v);
+
+}  // namespace lumis

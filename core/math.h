@@ -1,0 +1,100 @@
+// Small vector types for lumis: Vec2, Vec3 (also used as linear RGB Color), Vec4, and helpers.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace lumis {
+
+inline constexpr float kPi = 3.14159265358979323846f;
+inline constexpr float kInvPi = 0.31830988618379067154f;
+inline constexpr float kInv2Pi = 0.15915494309189533577f;
+inline constexpr float kInv4Pi = 0.07957747154594766788f;
+inline constexpr float kPiOver2 = 1.57079632679489661923f;
+inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;  ///< largest float below 1
+
+struct Vec2 {
+  float x = 0, y = 0;
+  constexpr Vec2() = default;
+  constexpr Vec2(float x_, float y_) : x(x_), y(y_) {}
+  constexpr float operator[](int i) const { return i == 0 ? x : y; }
+  constexpr float& operator[](int i) { return i == 0 ? x : y; }
+};
+constexpr Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+constexpr Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+constexpr Vec2 operator*(Vec2 a, float s) { return {a.x * s, a.y * s}; }
+constexpr Vec2 operator*(float s, Vec2 a) { return {a.x * s, a.y * s}; }
+
+struct Vec3 {
+  float x = 0, y = 0, z = 0;
+  constexpr Vec3() = default;
+  constexpr explicit Vec3(float s) : x(s), y(s), z(s) {}
+  constexpr Vec3(float x_, float y_, float z_) : x(x_), y(y_), z(z_) {}
+  constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  constexpr float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
+  constexpr Vec3 operator-() const { return {-x, -y, -z}; }
+  constexpr Vec3& operator+=(Vec3 b) { x += b.x; y += b.y; z += b.z; return *this; }
+  constexpr Vec3& operator-=(Vec3 b) { x -= b.x; y -= b.y; z -= b.z; return *this; }
+  constexpr Vec3& operator*=(Vec3 b) { x *= b.x; y *= b.y; z *= b.z; return *this; }
+  constexpr Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+  constexpr Vec3& operator/=(float s) { return *this *= 1.0f / s; }
+  constexpr bool operator==(const Vec3&) const = default;
+};
+/// Linear RGB radiance or reflectance (Rec.709 primaries).
+using Color = Vec3;
+
+constexpr Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+constexpr Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+constexpr Vec3 operator*(Vec3 a, Vec3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+constexpr Vec3 operator*(Vec3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
+constexpr Vec3 operator*(float s, Vec3 a) { return {a.x * s, a.y * s, a.z * s}; }
+constexpr Vec3 operator/(Vec3 a, float s) { return a * (1.0f / s); }
+constexpr Vec3 operator/(Vec3 a, Vec3 b) { return {a.x / b.x, a.y / b.y, a.z / b.z}; }
+
+constexpr float dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3 cross(Vec3 a, Vec3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline float length_squared(Vec3 a) { return dot(a, a); }
+inline float length(Vec3 a) { return std::sqrt(dot(a, a)); }
+inline Vec3 normalize(Vec3 a) { return a / length(a); }
+inline Vec3 abs(Vec3 a) { return {std::abs(a.x), std::abs(a.y), std::abs(a.z)}; }
+inline Vec3 min(Vec3 a, Vec3 b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
+inline Vec3 max(Vec3 a, Vec3 b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
+inline float max_component(Vec3 a) { return std::max(a.x, std::max(a.y, a.z)); }
+inline float min_component(Vec3 a) { return std::min(a.x, std::min(a.y, a.z)); }
+inline Vec3 lerp(float t, Vec3 a, Vec3 b) { return a * (1 - t) + b * t; }
+inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+inline bool is_black(Color c) { return c.x == 0 && c.y == 0 && c.z == 0; }
+/// Rec.709 luminance of linear RGB.
+inline float luminance(Color c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+/// Reflect w about n (both unit, same hemisphere convention as pbrt: result points away).
+inline Vec3 reflect(Vec3 w, Vec3 n) { return 2.0f * dot(w, n) * n - w; }
+
+struct Vec4 {
+  float x = 0, y = 0, z = 0, w = 0;
+  constexpr Vec4() = default;
+  constexpr Vec4(float x_, float y_, float z_, float w_) : x(x_), y(y_), z(z_), w(w_) {}
+  constexpr Vec3 xyz() const { return {x, y, z}; }
+  constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w)); }
+};
+
+inline float clamp(float v, float lo, float hi) { return std::min(std::max(v, lo), hi); }
+inline float safe_sqrt(float v) { return std::sqrt(std::max(v, 0.0f)); }
+inline float safe_acos(float v) { return std::acos(clamp(v, -1.0f, 1.0f)); }
+inline float safe_asin(float v) { return std::asin(clamp(v, -1.0f, 1.0f)); }
+inline float sqr(float v) { return v * v; }
+
+/// Axis-aligned bounding box.
+struct Bounds3 {
+  Vec3 lo{INFINITY, INFINITY, INFINITY};
+  Vec3 hi{-INFINITY, -INFINITY, -INFINITY};
+  void expand(Vec3 p) { lo = min(lo, p); hi = max(hi, p); }
+  void expand(const Bounds3& b) { lo = min(lo, b.lo); hi = max(hi, b.hi); }
+  bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
+  Vec3 center() const { return (lo + hi) * 0.5f; }
+  Vec3 diagonal() const { return hi - lo; }
+};
+
+}  // namespace lumis

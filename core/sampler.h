@@ -1,0 +1,44 @@
+// Per-pixel sample generators. A sampler is a small value type: start(pixel, index) resets it so that the numbers
+// it returns depend only on (pixel, sample index, seed, dimension), never on the thread or the tile order.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "core/math.h"
+#include "core/rng.h"
+
+namespace lumis {
+
+enum class SamplerType { Independent, Stratified, Sobol };
+
+/// Parse "independent" | "stratified" | "sobol".
+std::optional<SamplerType> parse_sampler_type(std::string_view name);
+const char* sampler_type_name(SamplerType type);
+
+class Sampler {
+ public:
+  /// spp is the number of samples each pixel will take (stratified uses it to size its strata).
+  Sampler(SamplerType type, uint32_t spp, uint32_t seed);
+
+  /// Begin sample `index` of pixel (px, py). Resets the dimension counter.
+  void start(uint32_t px, uint32_t py, uint32_t index);
+  /// Next dimension, uniform in [0,1).
+  float get1d();
+  /// Next two dimensions, uniform in [0,1)^2 (stratified/Sobol jointly in 2D).
+  Vec2 get2d();
+
+  SamplerType type() const { return type_; }
+  uint32_t spp() const { return spp_; }
+
+ private:
+  SamplerType type_;
+  uint32_t spp_, seed_;
+  uint32_t px_ = 0, py_ = 0, index_ = 0, dim_ = 0;
+  uint64_t pixel_hash_ = 0;
+  uint32_t strata_x_ = 1, strata_y_ = 1;  // stratified: spp factored into a near-square grid
+  Pcg32 rng_;
+};
+
+}  // namespace lumis

@@ -1,0 +1,52 @@
+// A render-ready scene: geometry (Embree), materials, lights, camera and the render settings.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/geometry.h"
+#include "core/sampler.h"
+#include "lights/light.h"
+#include "lights/light_selection.h"
+#include "materials/material.h"
+
+namespace lumis {
+
+enum class MisHeuristic { Balance, Power };
+enum class UniformMeasure { ThetaPhi, SolidAngle };
+
+struct RenderSettings {
+  std::string integrator = "nee_mis";
+  uint32_t spp = 64;
+  int max_depth = 8;         ///< path vertices that scatter; 1 = direct lighting only
+  int rr_depth = 3;          ///< Russian roulette from this depth on; 0 = off
+  SamplerType sampler = SamplerType::Stratified;
+  uint32_t seed = 0;
+  LightSelection light_selection = LightSelection::Importance;
+  MisHeuristic mis_heuristic = MisHeuristic::Balance;
+  UniformMeasure uniform_measure = UniformMeasure::ThetaPhi;
+  float mis_light_probability = 0.5f;  ///< `mis`: probability of the light strategy at a vertex (c_l)
+  int width = 512, height = 512;
+  float time_budget = 0;     ///< seconds; 0 = none
+  int threads = 0;           ///< 0 = all cores
+  bool aov_albedo = false, aov_normal = false, aov_depth = false, aov_variance = true;
+  float exposure = 0;
+};
+
+struct Scene {
+  Geometry geometry;
+  std::vector<std::unique_ptr<Material>> materials;
+  std::vector<std::unique_ptr<Light>> lights;
+  int environment = -1;      ///< index of the environment light, -1 when none
+  LightSelector light_selector;
+  Camera camera;
+  RenderSettings settings;
+  std::string source;        ///< file the scene came from (for messages)
+
+  /// After all geometry and lights are added: build the BVH, preprocess lights, build the light selector.
+  void finalize();
+};
+
+}  // namespace lumis

@@ -1,0 +1,74 @@
+// Light interface. All densities are per unit solid angle at the receiving point; choosing WHICH light is a
+// separate probability (lights/light_selection.h). pdf() works independently of sample(), as MIS needs.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+#include "core/math.h"
+#include "core/texture.h"
+
+namespace lumis {
+
+/// The receiving point: position and the surface normal there (zero normal: a point in free space, no horizon).
+struct LightSampleContext {
+  Vec3 p;
+  Vec3 n;
+};
+
+struct LightSample {
+  Color le;          ///< radiance arriving at the receiver along -wi (before visibility)
+  Vec3 wi;           ///< unit world direction from the receiver toward the light
+  float dist = 0;    ///< distance to the sampled light point (INFINITY for the environment)
+  float pdf = 0;     ///< solid-angle density of wi at the receiver
+  Vec3 p_light;      ///< sampled point on the light (unused for the environment)
+  Vec3 n_light;      ///< light surface normal at p_light
+};
+
+class Light {
+ public:
+  virtual ~Light() = default;
+  /// Sample a direction toward the light from ctx.p; density per unit solid angle at ctx.p.
+  virtual std::optional<LightSample> sample(const LightSampleContext& ctx, Vec2 u) const = 0;
+  /// Solid-angle density at ctx.p with which sample() would produce direction wi, arriving at `on_light`
+  /// (the hit a BSDF ray made on this light). Environment: on_light is ignored.
+  virtual float pdf(const LightSampleContext& ctx, Vec3 wi, const Hit& on_light) const = 0;
+  /// Radiance leaving the light at on_light in world direction w (pointing away from the light).
+  virtual Color le(const Hit& on_light, Vec3 w) const = 0;
+  /// Radiance arriving along a ray that escaped the scene in direction d (environment lights only).
+  virtual Color le_escaped(Vec3 /*d*/) const { return {}; }
+  /// Selection importance at the receiver (lecture): solid angle x luminance(Le), 0 when the light is entirely
+  /// below the receiver's horizon.
+  virtual float importance(const LightSampleContext& ctx) const = 0;
+  /// Total emitted power (luminance units, W-like), for power-proportional selection.
+  virtual float power() const = 0;
+  /// Called once with the scene bounds before rendering (environment: scene radius).
+  virtual void preprocess(const Bounds3& /*scene_bounds*/) {}
+  virtual bool is_environment() const { return false; }
+  virtual std::string name() const = 0;
+};
+
+/// Triangle-mesh light sampling method.
+enum class TriangleSampling { Area, SphericalTriangle };
+/// Quad light sampling method.
+enum class QuadSampling { Area, SphericalRectangle };
+
+/// Emitting sphere (one-sided: emits outward). Lecture's spherical-cap sampling; area sampling from inside.
+std::unique_ptr<Light> make_sphere_light(Vec3 center, float radius, Color radiance);
+/// Emitting parallelogram origin + s edge_u + t edge_v; emits on the side of cross(edge_u, edge_v).
+std::unique_ptr<Light> make_quad_light(Vec3 origin, Vec3 edge_u, Vec3 edge_v, Color radiance,
+                                       QuadSampling method = QuadSampling::SphericalRectangle);
+/// Emissive triangle mesh (world space; emits on the front face, both faces when two_sided). Radiance =
+/// factor x texture (when given, looked up with the mesh's uv set). Triangles chosen by emitted power.
+std::unique_ptr<Light> make_mesh_light(const TriangleMesh& mesh, Color factor, std::optional<Texture> texture,
+                                       bool two_sided, TriangleSampling method = TriangleSampling::SphericalTriangle);
+/// Constant-radiance environment.
+std::unique_ptr<Light> make_constant_environment(Color radiance);
+/// Equirectangular environment map (lat-long, +Y up), importance-sampled by luminance x sin(theta).
+/// rotation_degrees rotates about +Y.
+std::unique_ptr<Light> make_image_environment(std::shared_ptr<const Image> image, float scale, float rotation_degrees);
+
+}  // namespace lumis

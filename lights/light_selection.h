@@ -1,0 +1,40 @@
+// Choosing one light per path vertex: uniform, by power, or by the lecture's per-vertex importance
+// (solid angle x luminance, zero below the horizon, linear search over the running sum).
+#pragma once
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "core/distribution.h"
+#include "lights/light.h"
+
+namespace lumis {
+
+enum class LightSelection { Uniform, Power, Importance };
+std::optional<LightSelection> parse_light_selection(std::string_view name);
+const char* light_selection_name(LightSelection s);
+
+struct LightChoice {
+  int index = -1;
+  float pmf = 0;
+};
+
+class LightSelector {
+ public:
+  LightSelector() = default;
+  LightSelector(std::vector<const Light*> lights, LightSelection strategy);
+
+  /// Choose a light for the receiver; nullopt when no light can contribute.
+  std::optional<LightChoice> sample(const LightSampleContext& ctx, float u) const;
+  /// Probability that sample() picks light `index` at this receiver (recomputed exactly as sample() uses it).
+  float pmf(const LightSampleContext& ctx, int index) const;
+  size_t size() const { return lights_.size(); }
+
+ private:
+  std::vector<const Light*> lights_;
+  LightSelection strategy_ = LightSelection::Uniform;
+  Distribution1D power_;
+};
+
+}  // namespace lumis

@@ -1,0 +1,71 @@
+// BSDF interface. Directions are unit vectors in the local shading frame (z = shading normal), both pointing away
+// from the surface. f() EXCLUDES the cosine factor; pdf() is per unit solid angle of wi. The estimator weight of a
+// sample is f * |cos(wi)| / pdf. BSDFs are small value types held in a std::variant (no heap allocation per hit).
+#pragma once
+
+#include <optional>
+#include <variant>
+
+#include "core/math.h"
+#include "core/warp.h"
+
+namespace lumis {
+
+struct BsdfSample {
+  Vec3 wi;       ///< sampled incident direction (local)
+  Color f;       ///< BSDF value f(wo, wi), cosine excluded
+  float pdf = 0; ///< solid-angle density of wi under sample() (the full mixture density)
+};
+
+/// Lambertian reflection: f = albedo / pi on the upper hemisphere.
+struct DiffuseBsdf {
+  Color albedo;
+  Color f(Vec3 wo, Vec3 wi) const;                 ///< local frame, cosine excluded
+  float pdf(Vec3 wo, Vec3 wi) const;               ///< solid angle
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
+};
+
+/// GGX microfacet reflection: D G2 F / (4 cos_o cos_i) with height-correlated Smith G2 and Schlick Fresnel.
+struct GgxBsdf {
+  Color f0;          ///< Fresnel reflectance at normal incidence
+  float alpha;       ///< GGX roughness (isotropic), already clamped to a small minimum
+  VndfMethod method = VndfMethod::SphericalCap2023;
+  Color f(Vec3 wo, Vec3 wi) const;
+  float pdf(Vec3 wo, Vec3 wi) const;
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
+};
+
+/// glTF metallic-roughness: Lambert lobe (albedo base (1 - metallic)) plus GGX lobe (F0 = mix(0.04, base,
+/// metallic), alpha = roughness^2). Lobe choice per the lecture: diffuse with probability = luminance of the
+/// diffuse albedo, at most 0.5.
+struct PbrBsdf {
+  DiffuseBsdf diffuse;
+  GgxBsdf specular;
+  float diffuse_probability;
+  Color f(Vec3 wo, Vec3 wi) const;
+  float pdf(Vec3 wo, Vec3 wi) const;
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
+};
+
+/// Minimum GGX alpha, so that near-mirror materials stay representable in float.
+inline constexpr float kMinGgxAlpha = 1e-3f;
+
+PbrBsdf make_pbr_bsdf(Color base_color, float metallic, float roughness);
+
+/// Closed set of BSDFs, dispatched by std::visit.
+class Bsdf {
+ public:
+  Bsdf() : v_(DiffuseBsdf{Color(0.5f)}) {}
+  template <class T>
+  Bsdf(T b) : v_(std::move(b)) {}  // NOLINT: implicit on purpose
+  Color f(Vec3 wo, Vec3 wi) const { return std::visit([&](const auto& b) { return b.f(wo, wi); }, v_); }
+  float pdf(Vec3 wo, Vec3 wi) const { return std::visit([&](const auto& b) { return b.pdf(wo, wi); }, v_); }
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const {
+    return std::visit([&](const auto& b) { return b.sample(wo, u_lobe, u); }, v_);
+  }
+
+ private:
+  std::variant<DiffuseBsdf, GgxBsdf, PbrBsdf> v_;
+};
+
+}  // namespace lumis

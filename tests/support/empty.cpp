@@ -1,0 +1,1 @@
+// Keeps lumis_test_support non-empty.
