@@ -1,0 +1,168 @@
+#include "core/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <system_error>
+
+namespace lumis {
+
+namespace OIIO = OIIO_NAMESPACE;
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& reason) { throw ImageError(path + ": " + reason); }
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool is_alpha_name(const std::string& name) { return name == "A" || name == "a" || name == "alpha" || name == "Alpha"; }
+
+// Display formats hold encoded values; HDR formats hold linear radiance. The extension decides which.
+enum class Kind { Exr, Hdr, Png, Jpg };
+
+Kind kind_of(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".exr") return Kind::Exr;
+  if (ext == ".hdr") return Kind::Hdr;
+  if (ext == ".png") return Kind::Png;
+  if (ext == ".jpg" || ext == ".jpeg") return Kind::Jpg;
+  fail(path, "unsupported output extension '" + ext + "' (expected .exr, .hdr, .png or .jpg)");
+}
+
+/// Colour (first three channels, grey replicated) of pixel i, for formats that store only RGB.
+Color pixel_rgb(const Image& img, size_t i) {
+  const float* p = &img.data[i * img.channels];
+  if (img.channels >= 3) return {p[0], p[1], p[2]};
+  return Color(p[0]);
+}
+
+void write_to(const std::string& final_path, const std::string& tmp, const Image& image, Kind kind,
+              const WriteOptions& options) {
+  const size_t n = static_cast<size_t>(image.width) * image.height;
+  // OIIO picks the writer from the extension, which the temporary name lacks: name the format explicitly.
+  const char* format = kind == Kind::Exr ? "openexr" : kind == Kind::Hdr ? "hdr" : kind == Kind::Png ? "png" : "jpeg";
+  auto out = OIIO::ImageOutput::create(format);
+  if (!out) fail(final_path, "no " + std::string(format) + " writer: " + OIIO::geterror());
+
+  if (kind == Kind::Exr) {
+    OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
+    spec.channelnames = image.channel_names;
+    spec.alpha_channel = image.channel_index("A");
+    spec.attribute("compression", "zip");
+    if (!out->open(tmp, spec)) fail(final_path, out->geterror());
+    if (!out->write_image(OIIO::TypeDesc::FLOAT, image.data.data())) fail(final_path, out->geterror());
+  } else if (kind == Kind::Hdr) {
+    std::vector<float> rgb(n * 3);
+    for (size_t i = 0; i < n; ++i) {
+      const Color c = pixel_rgb(image, i);
+      for (int k = 0; k < 3; ++k) rgb[i * 3 + k] = std::max(c[k], 0.0f);  // RGBE cannot hold negatives
+    }
+    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT);
+    if (!out->open(tmp, spec)) fail(final_path, out->geterror());
+    if (!out->write_image(OIIO::TypeDesc::FLOAT, rgb.data())) fail(final_path, out->geterror());
+  } else {
+    // OIIO quantises float to 8 bits without any transfer curve, so the sRGB encoding is ours.
+    const float scale = std::exp2(options.exposure);
+    std::vector<unsigned char> rgb(n * 3);
+    for (size_t i = 0; i < n; ++i) {
+      const Color c = pixel_rgb(image, i);
+      for (int k = 0; k < 3; ++k) {
+        float v = c[k] * scale;
+        v = std::isnan(v) ? 0.0f : clamp(linear_to_srgb(clamp(v, 0.0f, 1.0f)), 0.0f, 1.0f);
+        rgb[i * 3 + k] = static_cast<unsigned char>(std::lround(v * 255.0f));
+      }
+    }
+    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    if (kind == Kind::Jpg) spec.attribute("Compression", "jpeg:95");
+    if (!out->open(tmp, spec)) fail(final_path, out->geterror());
+    if (!out->write_image(OIIO::TypeDesc::UINT8, rgb.data())) fail(final_path, out->geterror());
+  }
+  if (!out->close()) fail(final_path, out->geterror());
+}
+
+}  // namespace
+
+float linear_to_srgb(float v) {
+  if (v <= 0.0031308f) return 12.92f * v;
+  return 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+float srgb_to_linear(float v) {
+  if (v <= 0.04045f) return v / 12.92f;
+  return std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+Image read_image(const std::string& path, bool srgb_to_linear_colour) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail(path, "no such file");
+  if (fs::is_directory(path, ec)) fail(path, "is a directory, not an image");
+
+  // Straight (unassociated) alpha: glTF textures store colour and coverage independently.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) {
+    std::string why = OIIO::geterror();
+    fail(path, why.empty() ? "unreadable or unsupported image format" : why);
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail(path, "image has no pixels");
+  if (spec.depth > 1) fail(path, "volume images are not supported");
+
+  std::vector<std::string> names = spec.channelnames;
+  names.resize(spec.nchannels);
+  for (int c = 0; c < spec.nchannels; ++c)
+    if (names[c].empty()) names[c] = "C" + std::to_string(c);
+  Image img(spec.width, spec.height, names);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.data.data())) fail(path, in->geterror());
+  in->close();
+
+  // Integer-encoded files (8 or 16 bit) carry the sRGB curve; float files are already linear.
+  const bool integer_encoded = spec.format.basetype == OIIO::TypeDesc::UINT8 ||
+                               spec.format.basetype == OIIO::TypeDesc::UINT16;
+  if (srgb_to_linear_colour && integer_encoded) {
+    float lut[256];
+    for (int i = 0; i < 256; ++i) lut[i] = srgb_to_linear(i / 255.0f);
+    const bool eight_bit = spec.format.basetype == OIIO::TypeDesc::UINT8;
+    for (int c = 0; c < img.channels; ++c) {
+      if (c == spec.alpha_channel || is_alpha_name(names[c])) continue;
+      for (size_t i = static_cast<size_t>(c); i < img.data.size(); i += img.channels) {
+        float& v = img.data[i];
+        v = eight_bit ? lut[std::clamp(static_cast<int>(std::lround(v * 255.0f)), 0, 255)] : srgb_to_linear(v);
+      }
+    }
+  }
+  return img;
+}
+
+void write_image(const std::string& path, const Image& image, const WriteOptions& options) {
+  const Kind kind = kind_of(path);
+  if (image.width <= 0 || image.height <= 0 || image.channels <= 0)
+    fail(path, "cannot write an empty image");
+  if (image.data.size() != static_cast<size_t>(image.width) * image.height * image.channels ||
+      image.channel_names.size() != static_cast<size_t>(image.channels))
+    fail(path, "image data does not match its size and channel count");
+
+  const std::string tmp = path + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
+  try {
+    write_to(path, tmp, image, kind, options);
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) fail(path, "cannot rename temporary file: " + ec.message());
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw;
+  }
+}
+
+}  // namespace lumis
