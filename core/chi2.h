@@ -47,6 +47,14 @@ struct DirectionalTest {
 ChiSquareResult chi_square_directions(const std::function<std::optional<Vec3>(Pcg32&)>& sample,
                                       const std::function<double(Vec3)>& pdf, const DirectionalTest& config);
 
+/// Observed and expected counts per cell of a DirectionalTest, row-major: [cos_theta_bin * phi_bins + phi_bin].
+struct DirectionalHistogram {
+  std::vector<double> observed, expected;
+};
+/// The two histograms that chi_square_directions compares (for pictures such as `lumis warptest`).
+DirectionalHistogram directional_histogram(const std::function<std::optional<Vec3>(Pcg32&)>& sample,
+                                           const std::function<double(Vec3)>& pdf, const DirectionalTest& config);
+
 /// Monte Carlo integral of pdf over the sphere (should be <= 1, == 1 for a sampler that never fails), by
 /// stratified quadrature in (cos theta, phi).
 double integrate_over_sphere(const std::function<double(Vec3)>& pdf, int resolution = 512);
