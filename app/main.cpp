@@ -1,1 +1,29 @@
-int main() { return 0; }
+// lumis: an offline CPU path tracer. Subcommands: render, warptest (and more as they land).
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "app/cli.h"
+
+
+int main(int argc, char** argv) {
+  CLI::App app{"lumis: an offline path tracer built on the importance-sampling lecture's estimators"};
+  app.set_version_flag("--version", std::string("lumis ") + LUMIS_VERSION);
+  app.require_subcommand(1);
+  int exit_code = 0;
+  lumis::register_render_command(app, exit_code);
+  lumis::register_warptest_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+  return exit_code;
+}

@@ -54,6 +54,7 @@ struct Sphere {
 struct Hit {
   float t = INFINITY;
   Vec3 p;              ///< hit point
+  Vec3 p_error;        ///< conservative absolute floating-point error bound of p, per axis
   Vec3 ng;             ///< geometric normal of the front face (not flipped toward the ray)
   Vec3 ns;             ///< interpolated shading normal (== ng when the mesh has none), front-face side
   Vec4 tangent;        ///< interpolated tangent (w = handedness), zero when absent
@@ -64,13 +65,19 @@ struct Hit {
   int material = -1, light = -1;
 };
 
-/// Offset a point off a surface along its geometric normal, on the side of direction w, robustly at any scale
-/// (integer-ULP offset after Waechter & Binder, Ray Tracing Gems ch. 6).
-Vec3 offset_ray_origin(Vec3 p, Vec3 ng, Vec3 w);
+/// Offset a point with error bound p_error off a surface along its geometric normal, to the side of direction w,
+/// by the projected error bound (pbrt-v4's scheme): relative to the coordinates, so it works at any scene scale.
+Vec3 offset_ray_origin(Vec3 p, Vec3 p_error, Vec3 ng, Vec3 w);
 /// Ray from surface point p toward unit direction w.
 Ray spawn_ray(const Hit& from, Vec3 w);
 /// Shadow ray from surface point to a target point (the segment stops just short of the target).
 Ray spawn_ray_to(const Hit& from, Vec3 target);
+
+/// One intersection of a ray with light geometry (see Geometry::all_light_hits).
+struct LightHitRecord {
+  uint32_t geom_id, prim_id;
+  float t, u, v;
+};
 
 class Geometry {
  public:
@@ -90,6 +97,10 @@ class Geometry {
   bool intersect(const Ray& ray, Hit& hit) const;
   /// Whether anything lies in (ray.tmin, ray.tmax).
   bool occluded(const Ray& ray) const;
+  /// Every intersection of the ray with geometry that carries a light (light >= 0), ignoring all other geometry
+  /// and occlusion, in any order; at most max_hits are stored, the return value is the number found. The
+  /// one-sample MIS density needs every light whose solid angle contains a direction, visible or not.
+  int all_light_hits(const Ray& ray, LightHitRecord* out, int max_hits) const;
 
   bool is_mesh(uint32_t geom_id) const;
   const TriangleMesh& mesh(uint32_t geom_id) const;

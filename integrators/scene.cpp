@@ -5,11 +5,13 @@ namespace lumis {
 void Scene::finalize() {
   geometry.commit();
   const Bounds3 bounds = geometry.bounds();
+  for (auto& l : lights) l->preprocess(bounds);
+  update_light_selector();
+}
+
+void Scene::update_light_selector() {
   std::vector<const Light*> ptrs;
-  for (auto& l : lights) {
-    l->preprocess(bounds);
-    ptrs.push_back(l.get());
-  }
+  for (auto& l : lights) ptrs.push_back(l.get());
   light_selector = LightSelector(std::move(ptrs), settings.light_selection);
 }
 

@@ -47,6 +47,8 @@ struct Scene {
 
   /// After all geometry and lights are added: build the BVH, preprocess lights, build the light selector.
   void finalize();
+  /// Rebuild the light selector after settings.light_selection changed.
+  void update_light_selector();
 };
 
 }  // namespace lumis

@@ -1,0 +1,36 @@
+// Command-line front end: each subcommand is a function that returns the process exit code
+// (0 success, 1 scene/IO error, 2 usage error).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "integrators/scene.h"
+
+namespace lumis {
+
+/// Render options that override the scene file (shared by render, compare and bench).
+struct RenderOverrides {
+  std::optional<uint32_t> spp, seed;
+  std::optional<int> max_depth, rr_depth, width, height, threads;
+  std::optional<std::string> integrator, sampler, light_selection, mis_heuristic, uniform_measure;
+  std::optional<float> time, exposure;
+};
+
+/// Register the override options on a CLI11 subcommand.
+void add_render_overrides(CLI::App& cmd, RenderOverrides& o);
+/// Apply overrides to settings; throws std::invalid_argument for bad names (listing valid ones).
+void apply_overrides(const RenderOverrides& o, RenderSettings& s);
+
+/// The built-in default scene (scenes/cornell-sphere.json), found next to the sources or the executable.
+std::string default_scene_path();
+
+/// True when stderr is a terminal.
+bool stderr_is_tty();
+
+void register_render_command(CLI::App& app, int& exit_code);
+void register_warptest_command(CLI::App& app, int& exit_code);
+
+}  // namespace lumis

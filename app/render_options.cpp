@@ -1,0 +1,70 @@
+#include <stdexcept>
+
+#include "app/cli.h"
+#include "integrators/integrator.h"
+
+namespace lumis {
+
+void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
+  cmd.add_option("--spp", o.spp, "Samples per pixel")->check(CLI::PositiveNumber);
+  cmd.add_option("--integrator", o.integrator, "uniform | bsdf | light | mis | nee_mis");
+  cmd.add_option("--max-depth", o.max_depth, "Scattering vertices per path (1 = direct lighting only)")
+      ->check(CLI::Range(1, 1024));
+  cmd.add_option("--rr-depth", o.rr_depth, "Russian roulette from this depth on (0 = off)")->check(CLI::Range(0, 1024));
+  cmd.add_option("--seed", o.seed, "Random seed");
+  cmd.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  cmd.add_option("--width", o.width, "Image width in pixels")->check(CLI::Range(1, 16384));
+  cmd.add_option("--height", o.height, "Image height in pixels")->check(CLI::Range(1, 16384));
+  cmd.add_option("--sampler", o.sampler, "independent | stratified | sobol");
+  cmd.add_option("--light-selection", o.light_selection, "uniform | power | importance");
+  cmd.add_option("--mis-heuristic", o.mis_heuristic, "balance | power");
+  cmd.add_option("--uniform-measure", o.uniform_measure, "theta-phi | solid-angle (for --integrator uniform)");
+  cmd.add_option("--time", o.time, "Stop after this many seconds (writes what was rendered)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--exposure", o.exposure, "Exposure in stops for PNG/JPG output");
+}
+
+void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
+  if (o.spp) s.spp = *o.spp;
+  if (o.seed) s.seed = *o.seed;
+  if (o.max_depth) s.max_depth = *o.max_depth;
+  if (o.rr_depth) s.rr_depth = *o.rr_depth;
+  if (o.width) s.width = *o.width;
+  if (o.height) s.height = *o.height;
+  if (o.threads) s.threads = *o.threads;
+  if (o.time) s.time_budget = *o.time;
+  if (o.exposure) s.exposure = *o.exposure;
+  if (o.integrator) {
+    bool ok = false;
+    for (const auto& n : integrator_names()) ok |= n == *o.integrator;
+    if (!ok) throw std::invalid_argument("--integrator: unknown integrator '" + *o.integrator +
+                                         "' (valid: uniform, bsdf, light, mis, nee_mis)");
+    s.integrator = *o.integrator;
+  }
+  if (o.sampler) {
+    const auto t = parse_sampler_type(*o.sampler);
+    if (!t) throw std::invalid_argument("--sampler: unknown sampler '" + *o.sampler +
+                                        "' (valid: independent, stratified, sobol)");
+    s.sampler = *t;
+  }
+  if (o.light_selection) {
+    const auto t = parse_light_selection(*o.light_selection);
+    if (!t) throw std::invalid_argument("--light-selection: unknown strategy '" + *o.light_selection +
+                                        "' (valid: uniform, power, importance)");
+    s.light_selection = *t;
+  }
+  if (o.mis_heuristic) {
+    if (*o.mis_heuristic == "balance") s.mis_heuristic = MisHeuristic::Balance;
+    else if (*o.mis_heuristic == "power") s.mis_heuristic = MisHeuristic::Power;
+    else throw std::invalid_argument("--mis-heuristic: unknown heuristic '" + *o.mis_heuristic +
+                                     "' (valid: balance, power)");
+  }
+  if (o.uniform_measure) {
+    if (*o.uniform_measure == "theta-phi") s.uniform_measure = UniformMeasure::ThetaPhi;
+    else if (*o.uniform_measure == "solid-angle") s.uniform_measure = UniformMeasure::SolidAngle;
+    else throw std::invalid_argument("--uniform-measure: unknown measure '" + *o.uniform_measure +
+                                     "' (valid: theta-phi, solid-angle)");
+  }
+}
+
+}  // namespace lumis

@@ -1,0 +1,321 @@
+#include "core/geometry.h"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <stdexcept>
+
+namespace lumis {
+
+namespace {
+
+// Bound of the rounding error of a sum of k products (Higham's gamma_k), with a safety factor for Embree's
+// own intersection arithmetic, which we do not control.
+constexpr float kErrorScale = 64 * 0x1p-24f;
+
+bool ray_is_valid(const Ray& r) {
+  return is_finite(r.o) && is_finite(r.d) && std::isfinite(r.tmin) && r.tmin >= 0 && !std::isnan(r.tmax) &&
+         r.tmax >= 0;
+}
+
+struct AlphaData {
+  const TriangleMesh* mesh;
+};
+
+float alpha_at(const TriangleMesh& m, unsigned prim, float u, float v) {
+  const AlphaMask& a = *m.alpha;
+  float alpha = a.factor;
+  const uint32_t i0 = m.indices[3 * prim], i1 = m.indices[3 * prim + 1], i2 = m.indices[3 * prim + 2];
+  const float b0 = 1 - u - v;
+  if (!m.colors.empty()) alpha *= b0 * m.colors[i0].w + u * m.colors[i1].w + v * m.colors[i2].w;
+  if (a.texture) {
+    const auto& uvs = a.texture->tex_coord == 1 ? m.uv1 : m.uv0;
+    Vec2 uv{0, 0};
+    if (!uvs.empty()) uv = uvs[i0] * b0 + uvs[i1] * u + uvs[i2] * v;
+    alpha *= a.texture->sample(uv).w;
+  }
+  return alpha;
+}
+
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* mesh = static_cast<const TriangleMesh*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+    const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    if (alpha_at(*mesh, prim, u, v) < mesh->alpha->cutoff) args->valid[i] = 0;
+  }
+}
+
+void embree_error(void*, RTCError code, const char* str) {
+  std::fprintf(stderr, "lumis: embree error %d: %s\n", static_cast<int>(code), str ? str : "");
+}
+
+}  // namespace
+
+struct Geometry::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  RTCScene light_scene = nullptr;  // light geometry only, for all_light_hits
+  // deque: element addresses stay stable, Embree shares the vertex and index arrays.
+  std::deque<TriangleMesh> meshes;
+  std::deque<Sphere> spheres;
+  struct Slot {
+    bool is_mesh;
+    size_t index;
+  };
+  std::vector<Slot> slots;  // by geometry id
+  size_t triangles = 0;
+  Bounds3 bounds;
+};
+
+Geometry::Geometry() : impl_(std::make_unique<Impl>()) {
+  impl_->device = rtcNewDevice(nullptr);
+  if (!impl_->device) throw std::runtime_error("cannot create the Embree device");
+  rtcSetDeviceErrorFunction(impl_->device, embree_error, nullptr);
+  impl_->scene = rtcNewScene(impl_->device);
+  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_MEDIUM);
+  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
+  impl_->light_scene = rtcNewScene(impl_->device);
+  rtcSetSceneFlags(impl_->light_scene, static_cast<RTCSceneFlags>(RTC_SCENE_FLAG_ROBUST |
+                                                                  RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION));
+}
+
+Geometry::~Geometry() {
+  if (impl_->light_scene) rtcReleaseScene(impl_->light_scene);
+  if (impl_->scene) rtcReleaseScene(impl_->scene);
+  if (impl_->device) rtcReleaseDevice(impl_->device);
+}
+
+uint32_t Geometry::add_mesh(TriangleMesh mesh) {
+  auto& m = impl_->meshes.emplace_back(std::move(mesh));
+  // Embree reads vertex arrays 16 bytes at a time: one spare element keeps the last read in bounds.
+  m.positions.reserve(m.positions.size() + 1);
+  m.positions.emplace_back();
+  m.positions.pop_back();
+  RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0, sizeof(Vec3),
+                             m.positions.size());
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
+                             3 * sizeof(uint32_t), m.triangle_count());
+  if (m.alpha) {
+    rtcSetGeometryUserData(g, &m);
+    rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
+    rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
+  }
+  rtcCommitGeometry(g);
+  const uint32_t id = rtcAttachGeometry(impl_->scene, g);
+  if (m.light >= 0) rtcAttachGeometryByID(impl_->light_scene, g, id);
+  rtcReleaseGeometry(g);
+  if (id >= impl_->slots.size()) impl_->slots.resize(id + 1);
+  impl_->slots[id] = {true, impl_->meshes.size() - 1};
+  impl_->triangles += m.triangle_count();
+  for (const Vec3& p : m.positions) impl_->bounds.expand(p);
+  return id;
+}
+
+uint32_t Geometry::add_sphere(Sphere sphere) {
+  auto& s = impl_->spheres.emplace_back(sphere);
+  RTCGeometry g = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  auto* v = static_cast<float*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+  v[0] = s.center.x;
+  v[1] = s.center.y;
+  v[2] = s.center.z;
+  v[3] = s.radius;
+  rtcCommitGeometry(g);
+  const uint32_t id = rtcAttachGeometry(impl_->scene, g);
+  if (s.light >= 0) rtcAttachGeometryByID(impl_->light_scene, g, id);
+  rtcReleaseGeometry(g);
+  if (id >= impl_->slots.size()) impl_->slots.resize(id + 1);
+  impl_->slots[id] = {false, impl_->spheres.size() - 1};
+  impl_->bounds.expand(s.center - Vec3(s.radius));
+  impl_->bounds.expand(s.center + Vec3(s.radius));
+  return id;
+}
+
+void Geometry::commit() {
+  rtcCommitScene(impl_->scene);
+  rtcCommitScene(impl_->light_scene);
+}
+
+bool Geometry::is_mesh(uint32_t id) const { return impl_->slots[id].is_mesh; }
+const TriangleMesh& Geometry::mesh(uint32_t id) const { return impl_->meshes[impl_->slots[id].index]; }
+const Sphere& Geometry::sphere(uint32_t id) const { return impl_->spheres[impl_->slots[id].index]; }
+size_t Geometry::geometry_count() const { return impl_->slots.size(); }
+size_t Geometry::triangle_count() const { return impl_->triangles; }
+Bounds3 Geometry::bounds() const { return impl_->bounds; }
+
+void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, Hit& hit) const {
+  hit.geom_id = geom_id;
+  hit.prim_id = prim_id;
+  const Impl::Slot& slot = impl_->slots[geom_id];
+  if (!slot.is_mesh) {
+    const Sphere& s = impl_->spheres[slot.index];
+    // b1, b2 unused: the caller set hit.p; reproject it onto the sphere to remove the error of o + t d.
+    const Vec3 n = normalize(hit.p - s.center);
+    hit.p = s.center + n * s.radius;
+    hit.p_error = abs(hit.p) * kErrorScale;
+    hit.ng = hit.ns = n;
+    hit.tangent = {};
+    hit.uv[0] = hit.uv[1] = {};
+    hit.color = {1, 1, 1, 1};
+    hit.material = s.material;
+    hit.light = s.light;
+    return;
+  }
+  const TriangleMesh& m = impl_->meshes[slot.index];
+  const uint32_t i0 = m.indices[3 * prim_id], i1 = m.indices[3 * prim_id + 1], i2 = m.indices[3 * prim_id + 2];
+  const float b0 = 1 - b1 - b2;
+  const Vec3 p0 = m.positions[i0], p1 = m.positions[i1], p2 = m.positions[i2];
+  hit.p = p0 * b0 + p1 * b1 + p2 * b2;
+  hit.p_error = (abs(p0 * b0) + abs(p1 * b1) + abs(p2 * b2)) * kErrorScale;
+  const Vec3 c = cross(p1 - p0, p2 - p0);
+  const float cl = length(c);
+  hit.ng = cl > 0 ? c / cl : Vec3(0, 0, 1);
+  hit.ns = hit.ng;
+  if (!m.normals.empty()) {
+    const Vec3 n = m.normals[i0] * b0 + m.normals[i1] * b1 + m.normals[i2] * b2;
+    const float l = length(n);
+    if (l > 0 && std::isfinite(l)) hit.ns = n / l;
+  }
+  hit.tangent = {};
+  if (!m.tangents.empty()) {
+    const Vec4 t0 = m.tangents[i0], t1 = m.tangents[i1], t2 = m.tangents[i2];
+    const Vec3 t = t0.xyz() * b0 + t1.xyz() * b1 + t2.xyz() * b2;
+    hit.tangent = {t.x, t.y, t.z, t0.w < 0 ? -1.0f : 1.0f};
+  }
+  hit.uv[0] = m.uv0.empty() ? Vec2{} : m.uv0[i0] * b0 + m.uv0[i1] * b1 + m.uv0[i2] * b2;
+  hit.uv[1] = m.uv1.empty() ? Vec2{} : m.uv1[i0] * b0 + m.uv1[i1] * b1 + m.uv1[i2] * b2;
+  if (m.colors.empty()) {
+    hit.color = {1, 1, 1, 1};
+  } else {
+    const Vec4 a = m.colors[i0], b = m.colors[i1], d = m.colors[i2];
+    hit.color = {a.x * b0 + b.x * b1 + d.x * b2, a.y * b0 + b.y * b1 + d.y * b2, a.z * b0 + b.z * b1 + d.z * b2,
+                 a.w * b0 + b.w * b1 + d.w * b2};
+  }
+  hit.material = m.material;
+  hit.light = m.light;
+}
+
+bool Geometry::intersect(const Ray& ray, Hit& hit) const {
+  if (!ray_is_valid(ray)) return false;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh;
+  rh.ray.org_x = ray.o.x;
+  rh.ray.org_y = ray.o.y;
+  rh.ray.org_z = ray.o.z;
+  rh.ray.dir_x = ray.d.x;
+  rh.ray.dir_y = ray.d.y;
+  rh.ray.dir_z = ray.d.z;
+  rh.ray.tnear = ray.tmin;
+  rh.ray.tfar = ray.tmax;
+  rh.ray.time = 0;
+  rh.ray.mask = ~0u;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &ctx, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.t = rh.ray.tfar;
+  hit.p = ray.o + ray.d * hit.t;
+  fill_hit(rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, hit);
+  hit.front = dot(ray.d, hit.ng) < 0;
+  return true;
+}
+
+bool Geometry::occluded(const Ray& ray) const {
+  if (!ray_is_valid(ray)) return true;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRay r;
+  r.org_x = ray.o.x;
+  r.org_y = ray.o.y;
+  r.org_z = ray.o.z;
+  r.dir_x = ray.d.x;
+  r.dir_y = ray.d.y;
+  r.dir_z = ray.d.z;
+  r.tnear = ray.tmin;
+  r.tfar = ray.tmax;
+  r.time = 0;
+  r.mask = ~0u;
+  r.id = 0;
+  r.flags = 0;
+  rtcOccluded1(impl_->scene, &ctx, &r);
+  return r.tfar < 0;  // Embree sets tfar = -inf on an occluded ray
+}
+
+namespace {
+struct CollectContext {
+  RTCIntersectContext base;  // first member: Embree passes &base to the filter
+  LightHitRecord* out;
+  int max_hits, count;
+};
+
+void collect_filter(const RTCFilterFunctionNArguments* args) {
+  auto* ctx = reinterpret_cast<CollectContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    if (ctx->count < ctx->max_hits)
+      ctx->out[ctx->count] = {RTCHitN_geomID(args->hit, args->N, i), RTCHitN_primID(args->hit, args->N, i),
+                              RTCRayN_tfar(args->ray, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                              RTCHitN_v(args->hit, args->N, i)};
+    ++ctx->count;
+    args->valid[i] = 0;  // reject, so traversal goes on to every other hit
+  }
+}
+}  // namespace
+
+int Geometry::all_light_hits(const Ray& ray, LightHitRecord* out, int max_hits) const {
+  if (!ray_is_valid(ray)) return 0;
+  CollectContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.base.filter = collect_filter;
+  ctx.out = out;
+  ctx.max_hits = max_hits;
+  ctx.count = 0;
+  RTCRayHit rh;
+  rh.ray.org_x = ray.o.x;
+  rh.ray.org_y = ray.o.y;
+  rh.ray.org_z = ray.o.z;
+  rh.ray.dir_x = ray.d.x;
+  rh.ray.dir_y = ray.d.y;
+  rh.ray.dir_z = ray.d.z;
+  rh.ray.tnear = ray.tmin;
+  rh.ray.tfar = ray.tmax;
+  rh.ray.time = 0;
+  rh.ray.mask = ~0u;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->light_scene, &ctx.base, &rh);
+  return std::min(ctx.count, max_hits);
+}
+
+Vec3 offset_ray_origin(Vec3 p, Vec3 p_error, Vec3 ng, Vec3 w) {
+  const float d = dot(abs(ng), p_error);
+  Vec3 offset = ng * d;
+  if (dot(w, ng) < 0) offset = -offset;
+  Vec3 po = p + offset;
+  for (int i = 0; i < 3; ++i) {  // round away from p so the offset is never lost to rounding
+    if (offset[i] > 0) po[i] = std::nextafter(po[i], INFINITY);
+    else if (offset[i] < 0) po[i] = std::nextafter(po[i], -INFINITY);
+  }
+  return po;
+}
+
+Ray spawn_ray(const Hit& from, Vec3 w) {
+  return {offset_ray_origin(from.p, from.p_error, from.ng, w), w, 0, INFINITY};
+}
+
+Ray spawn_ray_to(const Hit& from, Vec3 target) {
+  const Vec3 o = offset_ray_origin(from.p, from.p_error, from.ng, target - from.p);
+  return {o, target - o, 0, 1 - 1e-4f};
+}
+
+}  // namespace lumis

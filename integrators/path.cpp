@@ -1,0 +1,104 @@
+#include "integrators/path.h"
+
+#include <cmath>
+
+namespace lumis {
+
+float mis_weight(float pdf_a, float pdf_b, MisHeuristic heuristic) {
+  if (heuristic == MisHeuristic::Power) {
+    pdf_a *= pdf_a;
+    pdf_b *= pdf_b;
+  }
+  const float w = pdf_a / (pdf_a + pdf_b);
+  return std::isfinite(w) ? w : 0.0f;
+}
+
+bool make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_dir, std::optional<Vertex>& out) {
+  if (hit.material < 0) return false;
+  ShadingPoint sp = scene.materials[hit.material]->shade(hit);
+  Frame frame = sp.frame;
+  Vec3 ng = hit.ng;
+  if (!hit.front) {  // two-sided shading: turn the surface toward the arriving ray
+    ng = -ng;
+    frame = Frame(frame.s, -frame.t, -frame.n);
+  }
+  const Vec3 wo_world = -normalize(ray_dir);
+  Vec3 wo = frame.to_local(wo_world);
+  // Shading-normal rule: when the shading normal puts the viewer below the surface although the geometry faces
+  // it, shade with the geometric normal (no black faces).
+  if (!(wo.z > 1e-6f)) {
+    frame = Frame::from_normal(ng);
+    wo = frame.to_local(wo_world);
+    if (!(wo.z > 0)) return false;
+  }
+  out.emplace(Vertex{scene, hit, frame, ng, sp.bsdf, wo, LightSampleContext{hit.p, ng}});
+  return true;
+}
+
+Color estimate_direct(const Vertex& v, float u_choice, Vec2 u_light, bool mis_weighted, MisHeuristic heuristic,
+                      PathCounters& counters) {
+  const Scene& scene = v.scene;
+  const std::optional<LightChoice> choice = scene.light_selector.sample(v.ctx, u_choice);
+  if (!choice) return {};
+  const Light& light = *scene.lights[choice->index];
+  const std::optional<LightSample> ls = light.sample(v.ctx, u_light);
+  if (!ls || !(ls->pdf > 0) || is_black(ls->le)) return {};
+  // Shading-normal rule: light arriving from below the geometric surface does not reflect (no light leaks).
+  if (dot(ls->wi, v.ng) <= 0) return {};
+  const Vec3 wi = v.frame.to_local(ls->wi);
+  const Color f = v.bsdf.f(v.wo, wi);
+  if (is_black(f)) return {};
+  ++counters.rays;
+  const Ray shadow = std::isinf(ls->dist) ? spawn_ray(v.hit, ls->wi) : spawn_ray_to(v.hit, ls->p_light);
+  if (scene.geometry.occluded(shadow)) return {};
+  const float pdf_light = choice->pmf * ls->pdf;
+  const float w = mis_weighted ? mis_weight(pdf_light, v.bsdf.pdf(v.wo, wi), heuristic) : 1.0f;
+  return f * ls->le * (std::abs(wi.z) * w / pdf_light);
+}
+
+float light_pdf_for_hit(const Scene& scene, const LightSampleContext& ctx, int light, const Hit* on_light, Vec3 dir) {
+  const float pmf = scene.light_selector.pmf(ctx, light);
+  if (!(pmf > 0)) return 0;
+  static const Hit kNoHit;
+  return pmf * scene.lights[light]->pdf(ctx, normalize(dir), on_light ? *on_light : kNoHit);
+}
+
+float light_strategy_pdf(const Scene& scene, const Hit& from, const LightSampleContext& ctx, Vec3 wi,
+                         PathCounters& counters) {
+  float pdf = 0;
+  if (scene.environment >= 0) pdf += light_pdf_for_hit(scene, ctx, scene.environment, nullptr, wi);
+  constexpr int kMaxHits = 64;
+  LightHitRecord hits[kMaxHits];
+  ++counters.rays;
+  const int n = scene.geometry.all_light_hits(spawn_ray(from, wi), hits, kMaxHits);
+  uint32_t spheres_seen[kMaxHits];
+  int n_spheres = 0;
+  for (int i = 0; i < n; ++i) {
+    const LightHitRecord& r = hits[i];
+    // A sphere's density is per direction: its near and far intersections count once.
+    if (!scene.geometry.is_mesh(r.geom_id)) {
+      bool seen = false;
+      for (int k = 0; k < n_spheres; ++k) seen |= spheres_seen[k] == r.geom_id;
+      if (seen) continue;
+      spheres_seen[n_spheres++] = r.geom_id;
+    }
+    Hit h;
+    const Ray ray = spawn_ray(from, wi);
+    h.p = ray.o + ray.d * r.t;
+    h.t = r.t;
+    scene.geometry.fill_hit(r.geom_id, r.prim_id, r.u, r.v, h);
+    h.front = dot(wi, h.ng) < 0;
+    pdf += light_pdf_for_hit(scene, ctx, h.light, &h, wi);
+  }
+  return pdf;
+}
+
+std::optional<Scatter> scatter_bsdf(const Vertex& v, float u_lobe, Vec2 u) {
+  const std::optional<BsdfSample> bs = v.bsdf.sample(v.wo, u_lobe, u);
+  if (!bs || !(bs->pdf > 0)) return std::nullopt;
+  const Vec3 wi = v.frame.to_world(bs->wi);
+  if (dot(wi, v.ng) <= 0) return std::nullopt;  // through the geometric surface: no contribution
+  return Scatter{wi, bs->f * (std::abs(bs->wi.z) / bs->pdf), bs->pdf};
+}
+
+}  // namespace lumis

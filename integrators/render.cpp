@@ -1,0 +1,101 @@
+#include "integrators/render.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_scheduler_observer.h>
+#include <xmmintrin.h>
+#include <pmmintrin.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <thread>
+
+namespace lumis {
+
+namespace {
+
+constexpr int kTile = 16;
+
+// Embree wants flush-to-zero and denormals-are-zero on every thread that traces rays.
+class FtzObserver : public tbb::task_scheduler_observer {
+ public:
+  explicit FtzObserver(tbb::task_arena& arena) : tbb::task_scheduler_observer(arena) { observe(true); }
+  ~FtzObserver() override { observe(false); }
+  void on_scheduler_entry(bool) override {
+    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+  }
+};
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+RenderStats render(const Scene& scene, const Integrator& integrator, Film& film, const RenderOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int width = film.width(), height = film.height();
+  const int tiles_x = (width + kTile - 1) / kTile, tiles_y = (height + kTile - 1) / kTile;
+  const int n_tiles = tiles_x * tiles_y;
+  const int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
+  tbb::task_arena arena(std::max(1, threads));
+  FtzObserver ftz(arena);
+  Camera camera = scene.camera;
+  camera.prepare(width, height);
+  const SamplerType sampler_type = scene.settings.sampler;
+  const uint32_t seed = scene.settings.seed;
+  const uint32_t spp = std::max(1u, options.spp);
+
+  tbb::enumerable_thread_specific<PathCounters> counters;
+  RenderStats stats;
+  uint32_t done = 0;
+  uint32_t pass = 1;  // samples per pixel in the next pass; grows so that passes take about half a second
+  const uint64_t pixels = static_cast<uint64_t>(width) * height;
+  while (done < spp) {
+    if (options.cancel && options.cancel->load()) break;
+    const uint32_t begin = done, end = std::min(spp, done + pass);
+    const auto pass_start = std::chrono::steady_clock::now();
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<int>(0, n_tiles, 1), [&](const tbb::blocked_range<int>& r) {
+        PathCounters& local = counters.local();
+        Sampler sampler(sampler_type, spp, seed);
+        for (int tile = r.begin(); tile < r.end(); ++tile) {
+          const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
+          const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
+          for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x)
+              for (uint32_t i = begin; i < end; ++i) {
+                sampler.start(static_cast<uint32_t>(x), static_cast<uint32_t>(y), i);
+                const Vec2 jitter = sampler.get2d();  // box filter: uniform over the pixel
+                const Ray ray = camera.generate_ray({x + jitter.x, y + jitter.y});
+                AovSample aov;
+                const Color l = integrator.li(scene, ray, sampler, &aov, local);
+                film.add(x, y, l, &aov);
+              }
+        }
+      });
+    });
+    done = end;
+    stats.samples += pixels * (end - begin);
+    const double pass_seconds = seconds_since(pass_start);
+    if (options.on_progress) options.on_progress({done * pixels, spp * pixels, seconds_since(t0)});
+    if (options.time_budget > 0 && seconds_since(t0) >= options.time_budget) break;
+    // Next pass: aim at ~0.5 s (and never past the time budget by more than one pass).
+    const double per_sample = pass_seconds / std::max(1u, end - begin);
+    double target = 0.5;
+    if (options.time_budget > 0) target = std::min(target, std::max(0.0, options.time_budget - seconds_since(t0)));
+    pass = static_cast<uint32_t>(std::clamp(target / std::max(per_sample, 1e-9), 1.0, 1024.0));
+  }
+  stats.seconds = seconds_since(t0);
+  stats.spp = done;
+  stats.stopped_early = done < spp;
+  for (const PathCounters& c : counters) stats.rays += c.rays;
+  stats.dropped = film.dropped();
+  return stats;
+}
+
+}  // namespace lumis

@@ -1,0 +1,40 @@
+// Tile-parallel rendering on TBB. Random numbers come from (pixel, sample index, seed) only, so the image is
+// bitwise identical for any thread count. Rendering proceeds in passes of whole samples per pixel, so a time
+// budget or a cancel request stops at a sample boundary with every pixel at the same count.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+
+#include "core/film.h"
+#include "integrators/integrator.h"
+#include "integrators/scene.h"
+
+namespace lumis {
+
+struct RenderProgress {
+  uint64_t samples_done = 0, samples_total = 0;  ///< pixel samples
+  double elapsed = 0;                            ///< seconds
+};
+
+struct RenderOptions {
+  uint32_t spp = 16;
+  double time_budget = 0;                 ///< seconds; 0 = render all spp
+  int threads = 0;                        ///< 0 = all cores
+  const std::atomic<bool>* cancel = nullptr;
+  std::function<void(const RenderProgress&)> on_progress;  ///< called from the calling thread between tiles
+};
+
+struct RenderStats {
+  double seconds = 0;
+  uint32_t spp = 0;           ///< samples per pixel actually taken
+  uint64_t samples = 0;       ///< pixel samples
+  uint64_t rays = 0;          ///< rays traced (closest hit + shadow + light-density queries)
+  uint64_t dropped = 0;       ///< non-finite samples dropped
+  bool stopped_early = false; ///< time budget or cancel
+};
+
+RenderStats render(const Scene& scene, const Integrator& integrator, Film& film, const RenderOptions& options);
+
+}  // namespace lumis
