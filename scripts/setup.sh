@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs lumis's build dependencies from Debian 12 packages (idempotent), then builds lumis.
+# Installs lumis's build dependencies from Debian 12 packages (idempotent), builds lumis (Release, in build/) and
+# renders the built-in default scene to cornell-sphere.png.
 # Usage: scripts/setup.sh [--deps-only]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -35,3 +36,5 @@ fi
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build
+build/lumis render -o cornell-sphere.png
+echo "setup: rendered $(pwd)/cornell-sphere.png" >&2
