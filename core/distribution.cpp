@@ -1,0 +1,107 @@
+// Piecewise-constant distributions by inversion of a tabulated CDF (the lecture's discrete sampling, with a binary
+// search in place of the linear one). The CDF is summed in double and normalised so that cdf_.back() == 1 exactly.
+#include "core/distribution.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace lumis {
+
+Distribution1D::Distribution1D(std::span<const float> f) : func_(f.begin(), f.end()) {
+  // An empty table behaves as one zero cell, i.e. uniform: callers need not special-case it.
+  if (func_.empty()) func_.push_back(0.0f);
+  for (float& v : func_)
+    if (!(v > 0) || !std::isfinite(v)) v = 0.0f;  // negative, NaN and infinite weights cannot be sampled
+  const size_t n = func_.size();
+  std::vector<double> sum(n + 1, 0.0);
+  for (size_t i = 0; i < n; ++i) sum[i + 1] = sum[i] + static_cast<double>(func_[i]) / n;
+  integral_ = static_cast<float>(sum[n]);
+  cdf_.resize(n + 1);
+  for (size_t i = 0; i <= n; ++i)
+    cdf_[i] = sum[n] > 0 ? static_cast<float>(sum[i] / sum[n]) : static_cast<float>(double(i) / n);
+  cdf_[n] = 1.0f;
+}
+
+namespace {
+// Index of the cell whose CDF interval [cdf[i], cdf[i+1]) holds u. Zero-weight cells have empty intervals and are
+// skipped by taking the last i with cdf[i] <= u.
+size_t find_cell(const std::vector<float>& cdf, float u) {
+  const auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
+  const ptrdiff_t i = (it - cdf.begin()) - 1;
+  return static_cast<size_t>(std::clamp<ptrdiff_t>(i, 0, static_cast<ptrdiff_t>(cdf.size()) - 2));
+}
+}  // namespace
+
+float Distribution1D::sample_continuous(float u, float* pdf, size_t* cell) const {
+  const size_t i = find_cell(cdf_, u);
+  const float width = cdf_[i + 1] - cdf_[i];
+  const float du = width > 0 ? clamp((u - cdf_[i]) / width, 0.0f, 1.0f) : 0.0f;
+  if (pdf) *pdf = integral_ > 0 ? func_[i] / integral_ : 1.0f;
+  if (cell) *cell = i;
+  // Rounding of (i + du) / n can reach 1 for the last cell; the domain is [0, 1).
+  return std::min((static_cast<float>(i) + du) / static_cast<float>(size()), kOneMinusEpsilon);
+}
+
+float Distribution1D::pdf_continuous(float x) const {
+  if (!(x >= 0 && x < 1)) return 0.0f;
+  const size_t i = std::min(static_cast<size_t>(x * static_cast<float>(size())), size() - 1);
+  return integral_ > 0 ? func_[i] / integral_ : 1.0f;
+}
+
+size_t Distribution1D::sample_discrete(float u, float* pmf_out, float* u_remapped) const {
+  const size_t i = find_cell(cdf_, u);
+  if (pmf_out) *pmf_out = pmf(i);
+  if (u_remapped) {
+    const float width = cdf_[i + 1] - cdf_[i];
+    *u_remapped = width > 0 ? clamp((u - cdf_[i]) / width, 0.0f, kOneMinusEpsilon) : 0.0f;
+  }
+  return i;
+}
+
+float Distribution1D::pmf(size_t i) const {
+  if (i >= size()) return 0.0f;
+  return integral_ > 0 ? func_[i] / (integral_ * static_cast<float>(size())) : 1.0f / static_cast<float>(size());
+}
+
+float Distribution1D::invert(float x) const {
+  const float xn = clamp(x, 0.0f, 1.0f) * static_cast<float>(size());
+  const size_t i = std::min(static_cast<size_t>(xn), size() - 1);
+  const float frac = clamp(xn - static_cast<float>(i), 0.0f, 1.0f);
+  return std::min(cdf_[i] + frac * (cdf_[i + 1] - cdf_[i]), kOneMinusEpsilon);
+}
+
+Distribution2D::Distribution2D(std::span<const float> f, int nu, int nv) : nu_(nu), nv_(nv) {
+  if (nu <= 0 || nv <= 0 || f.size() != static_cast<size_t>(nu) * static_cast<size_t>(nv))
+    throw std::invalid_argument("Distribution2D: table size does not match nu x nv");
+  conditional_.reserve(nv);
+  std::vector<float> row_integrals(nv);
+  for (int v = 0; v < nv; ++v) {
+    conditional_.emplace_back(f.subspan(static_cast<size_t>(v) * nu, nu));
+    row_integrals[v] = conditional_.back().integral();
+  }
+  marginal_ = Distribution1D(row_integrals);
+}
+
+Vec2 Distribution2D::sample_continuous(Vec2 u, float* pdf_out) const {
+  float pdf_v = 0, pdf_u = 0;
+  size_t v = 0;
+  const float y = marginal_.sample_continuous(u.y, &pdf_v, &v);
+  const float x = conditional_[v].sample_continuous(u.x, &pdf_u);
+  if (pdf_out) *pdf_out = pdf_u * pdf_v;
+  return {x, y};
+}
+
+float Distribution2D::pdf(Vec2 p) const {
+  if (!(p.x >= 0 && p.x < 1 && p.y >= 0 && p.y < 1)) return 0.0f;
+  const int iv = std::min(static_cast<int>(p.y * nv_), nv_ - 1);
+  // Same product as sample_continuous: (f / row integral) * (row integral / total) = f / total.
+  return marginal_.pdf_continuous(p.y) * conditional_[iv].pdf_continuous(p.x);
+}
+
+Vec2 Distribution2D::invert(Vec2 p) const {
+  const int iv = std::clamp(static_cast<int>(p.y * nv_), 0, nv_ - 1);
+  return {conditional_[iv].invert(p.x), marginal_.invert(p.y)};
+}
+
+}  // namespace lumis
