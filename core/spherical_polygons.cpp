@@ -1,0 +1,187 @@
+// Solid angles of triangles and rectangles seen from a point, and uniform sampling of them by solid angle:
+// Arvo 1995 ("Stratified sampling of spherical triangles") and Urena, Fajardo & King 2013 ("An area-preserving
+// parametrization for spherical rectangles"). All arithmetic is in double: both algorithms take differences of
+// angles whose sum is close to pi (small triangles), which float cannot resolve below ~1e-3 sr.
+//
+// Failure (nullopt) depends only on the geometry (p and the polygon), never on u, so a caller can ask "would
+// sampling succeed from here?" with any u and reproduce the choice in its pdf.
+#include <cmath>
+
+#include "core/warp.h"
+
+namespace lumis {
+namespace {
+
+struct D3 {
+  double x = 0, y = 0, z = 0;
+};
+D3 to_d(Vec3 v) { return {v.x, v.y, v.z}; }
+Vec3 to_f(D3 v) { return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)}; }
+D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+D3 operator*(D3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+double ddot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+D3 dcross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+double dlen(D3 a) { return std::sqrt(ddot(a, a)); }
+D3 dnormalize(D3 a) {
+  const double l = dlen(a);
+  return l > 0 ? a * (1.0 / l) : D3{};
+}
+double dclamp(double v, double lo, double hi) { return std::min(std::max(v, lo), hi); }
+constexpr double kDPi = 3.14159265358979323846;
+
+// Solid angles below this are left to area sampling. In double the angle-sum cancellation costs ~1e-16 / omega
+// relative, harmless down to 1e-10 sr; the limit is the float result direction (~6e-8 rad): at 1e-6 sr the polygon
+// spans ~1e-3 rad and a float direction can miss it by 1e-4 of its width. Below that, the polygon is so small that
+// the area-to-solid-angle Jacobian is nearly constant over it and area sampling is practically as good.
+constexpr double kMinSolidAngle = 1e-6;
+// Near 2 pi the receiver lies almost in the polygon's plane above its interior: every spherical angle tends to pi
+// and Arvo's q divides by sin(alpha) -> 0, so leave that case to area sampling as well.
+constexpr double kMaxSolidAngle = 2 * kDPi - 1e-3;
+
+// Van Oosterom & Strackee on unit vectors: tan(omega/2) = |a.(b x c)| / (1 + a.b + b.c + c.a).
+double unit_triangle_solid_angle(D3 a, D3 b, D3 c) {
+  const double num = std::abs(ddot(a, dcross(b, c)));
+  const double den = 1 + ddot(a, b) + ddot(b, c) + ddot(c, a);
+  return 2 * std::atan2(num, den);
+}
+
+// Interior angle of the spherical triangle at unit vertex a, between the great arcs toward b and toward c.
+double vertex_angle(D3 a, D3 b, D3 c) {
+  const D3 nb = dnormalize(dcross(a, b)), nc = dnormalize(dcross(a, c));
+  return std::acos(dclamp(ddot(nb, nc), -1, 1));
+}
+
+struct UnitTriangle {
+  D3 a, b, c;
+  double area = 0;
+  bool ok = false;
+};
+
+UnitTriangle make_unit_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
+  const D3 dp = to_d(p);
+  const D3 da = to_d(a) - dp, db = to_d(b) - dp, dc = to_d(c) - dp;
+  UnitTriangle t;
+  const double la = dlen(da), lb = dlen(db), lc = dlen(dc);
+  if (!(la > 0 && lb > 0 && lc > 0) || !std::isfinite(la + lb + lc)) return t;
+  t.a = da * (1 / la);
+  t.b = db * (1 / lb);
+  t.c = dc * (1 / lc);
+  t.area = unit_triangle_solid_angle(t.a, t.b, t.c);
+  t.ok = t.area >= kMinSolidAngle && t.area <= kMaxSolidAngle;
+  return t;
+}
+
+// Urena et al. 2013, section 3: the rectangle in a frame with x, y along its edges and the receiver at the origin
+// on the negative-z side (z0 < 0).
+struct SphericalRect {
+  D3 o, x, y, z;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0, z0 = 0;
+  double b0 = 0, b1 = 0, k = 0, s = 0;
+};
+
+SphericalRect make_spherical_rect(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey) {
+  SphericalRect r;
+  r.o = to_d(p);
+  const D3 dex = to_d(ex), dey = to_d(ey);
+  const double exl = dlen(dex), eyl = dlen(dey);
+  if (!(exl > 0 && eyl > 0)) return r;
+  r.x = dex * (1 / exl);
+  r.y = dey * (1 / eyl);
+  r.z = dcross(r.x, r.y);
+  const D3 d = to_d(origin) - r.o;
+  r.z0 = ddot(d, r.z);
+  if (r.z0 > 0) {
+    r.z = r.z * -1.0;
+    r.z0 = -r.z0;
+  }
+  r.x0 = ddot(d, r.x);
+  r.y0 = ddot(d, r.y);
+  r.x1 = r.x0 + exl;
+  r.y1 = r.y0 + eyl;
+  if (!(r.z0 < 0)) return r;  // receiver in the plane: solid angle 0 or 2 pi, both degenerate
+  const D3 v00{r.x0, r.y0, r.z0}, v01{r.x0, r.y1, r.z0}, v10{r.x1, r.y0, r.z0}, v11{r.x1, r.y1, r.z0};
+  // Normals of the planes through the origin and each edge, all pointing into the pyramid.
+  const D3 n0 = dnormalize(dcross(v00, v10)), n1 = dnormalize(dcross(v10, v11));
+  const D3 n2 = dnormalize(dcross(v11, v01)), n3 = dnormalize(dcross(v01, v00));
+  const double g0 = std::acos(dclamp(-ddot(n0, n1), -1, 1)), g1 = std::acos(dclamp(-ddot(n1, n2), -1, 1));
+  const double g2 = std::acos(dclamp(-ddot(n2, n3), -1, 1)), g3 = std::acos(dclamp(-ddot(n3, n0), -1, 1));
+  r.b0 = n0.z;
+  r.b1 = n2.z;
+  r.k = 2 * kDPi - g2 - g3;
+  r.s = std::max(g0 + g1 - r.k, 0.0);  // four-angle formula: sum of interior angles - 2 pi
+  return r;
+}
+
+}  // namespace
+
+float triangle_solid_angle(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
+  // General-length form of Van Oosterom & Strackee, so no normalisation of near-zero vectors is needed.
+  const D3 dp = to_d(p);
+  const D3 da = to_d(a) - dp, db = to_d(b) - dp, dc = to_d(c) - dp;
+  const double la = dlen(da), lb = dlen(db), lc = dlen(dc);
+  const double num = std::abs(ddot(da, dcross(db, dc)));
+  const double den = la * lb * lc + ddot(da, db) * lc + ddot(da, dc) * lb + ddot(db, dc) * la;
+  return static_cast<float>(2 * std::atan2(num, den));
+}
+
+std::optional<SphericalSample> sample_spherical_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, Vec2 u) {
+  const UnitTriangle t = make_unit_triangle(p, a, b, c);
+  if (!t.ok) return std::nullopt;
+  const D3 A = t.a, B = t.b, C = t.c;
+  const double alpha = vertex_angle(A, B, C);
+  const double cos_c = ddot(A, B);  // cosine of the arc opposite C
+  // Arvo: choose the sub-triangle (A, B, C') of area u.x * area; C' lies on arc AC at cos(arc AC') = q.
+  const double area_sub = u.x * t.area;
+  const double s = std::sin(area_sub - alpha), cs = std::cos(area_sub - alpha);
+  const double uu = cs - std::cos(alpha);
+  const double vv = s + std::sin(alpha) * cos_c;
+  double q = ((vv * cs - uu * s) * std::cos(alpha) - vv) / ((vv * s + uu * cs) * std::sin(alpha));
+  if (!std::isfinite(q)) q = 1;  // only at area_sub -> 0, where C' = A
+  q = dclamp(q, -1, 1);
+  const D3 c_perp = dnormalize(C - A * ddot(C, A));
+  const D3 c_sub = A * q + c_perp * std::sqrt(std::max(0.0, 1 - q * q));
+  // Then uniform in the sub-triangle along the arc from B toward C', by 1 - cos of the arc length.
+  const double z = 1 - u.y * (1 - ddot(c_sub, B));
+  const D3 b_perp = dnormalize(c_sub - B * ddot(c_sub, B));
+  const D3 w = dnormalize(B * z + b_perp * std::sqrt(std::max(0.0, 1 - z * z)));
+  return SphericalSample{to_f(w), static_cast<float>(1 / t.area)};
+}
+
+Vec2 invert_spherical_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, Vec3 w) {
+  const UnitTriangle t = make_unit_triangle(p, a, b, c);
+  if (!(t.area > 0)) return {0, 0};
+  const D3 A = t.a, B = t.b, C = t.c, W = dnormalize(to_d(w));
+  // C' is where the great circle through B and w meets arc AC; pick the antipode lying between A and C.
+  D3 c_sub = dnormalize(dcross(dcross(B, W), dcross(C, A)));
+  if (ddot(c_sub, A + C) < 0) c_sub = c_sub * -1.0;
+  const double u0 = unit_triangle_solid_angle(A, B, c_sub) / t.area;
+  const double den = 1 - ddot(c_sub, B);
+  const double u1 = den > 0 ? (1 - ddot(W, B)) / den : 0;
+  return {static_cast<float>(dclamp(u0, 0, 1)), static_cast<float>(dclamp(u1, 0, 1))};
+}
+
+float rectangle_solid_angle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey) {
+  return static_cast<float>(make_spherical_rect(p, origin, ex, ey).s);
+}
+
+std::optional<SphericalSample> sample_spherical_rectangle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey, Vec2 u) {
+  const SphericalRect r = make_spherical_rect(p, origin, ex, ey);
+  if (!(r.s >= kMinSolidAngle && r.s <= kMaxSolidAngle)) return std::nullopt;
+  // u.x picks the x of the point through the area of the sub-rectangle left of it (the angle au)...
+  const double au = u.x * r.s + r.k;
+  const double fu = (std::cos(au) * r.b0 - r.b1) / std::sin(au);
+  double cu = (fu > 0 ? 1.0 : -1.0) / std::sqrt(fu * fu + r.b0 * r.b0);
+  cu = dclamp(cu, -1, 1);
+  double xu = -(cu * r.z0) / std::sqrt(std::max(1e-300, 1 - cu * cu));
+  xu = std::isfinite(xu) ? dclamp(xu, r.x0, r.x1) : 0.5 * (r.x0 + r.x1);
+  // ...and u.y is uniform in the sine of the elevation along that vertical line, which is uniform in solid angle.
+  const double dd = std::sqrt(xu * xu + r.z0 * r.z0);
+  const double h0 = r.y0 / std::sqrt(dd * dd + r.y0 * r.y0), h1 = r.y1 / std::sqrt(dd * dd + r.y1 * r.y1);
+  const double hv = h0 + u.y * (h1 - h0), hv2 = hv * hv;
+  const double yv = hv2 < 1 - 1e-12 ? (hv * dd) / std::sqrt(1 - hv2) : r.y1;
+  const D3 local = r.x * xu + r.y * dclamp(yv, r.y0, r.y1) + r.z * r.z0;
+  return SphericalSample{to_f(dnormalize(local)), static_cast<float>(1 / r.s)};
+}
+
+}  // namespace lumis
