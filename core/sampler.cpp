@@ -1,0 +1,162 @@
+// Three per-pixel samplers behind one value type. Every number is a function of (pixel, sample index, seed,
+// dimension) alone: each call hashes those into its own seeds, so tiles and threads cannot change an image.
+//
+// independent: PCG32 seeded from hash(pixel, index, seed); dimension d is the d-th draw.
+// stratified:  the lecture's "stratified random numbers instead of a PRNG": jittered strata (spp strata for a 1D
+//              dimension, a near-square grid for a 2D one); which stratum sample `index` gets is a pseudo-random
+//              permutation keyed by (pixel, dimension, seed), so dimensions are not correlated with each other.
+// sobol:       the 2D Sobol (0,2)-sequence per pair of dimensions (Burley 2020, "Practical Hash-based Owen
+//              Scrambling"): the index is shuffled by a nested scramble and both coordinates are Owen-scrambled,
+//              all with seeds keyed by (pixel, dimension, seed), so every pair is an independent randomised net.
+#include "core/sampler.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+
+namespace lumis {
+
+namespace {
+
+uint32_t reverse_bits(uint32_t x) {
+  x = (x << 16) | (x >> 16);
+  x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+  x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
+  x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
+  x = ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
+  return x;
+}
+
+// Direction numbers of the second Sobol dimension (primitive polynomial x + 1, m_1 = 1): the recurrence
+// v_k = v_{k-1} ^ (v_{k-1} >> 1) from v_1 = 1/2. The first dimension is the van der Corput sequence, reverse_bits.
+constexpr std::array<uint32_t, 32> make_sobol_dim1() {
+  std::array<uint32_t, 32> v{};
+  v[0] = 1u << 31;
+  for (int k = 1; k < 32; ++k) v[k] = v[k - 1] ^ (v[k - 1] >> 1);
+  return v;
+}
+constexpr std::array<uint32_t, 32> kSobolDim1 = make_sobol_dim1();
+
+uint32_t sobol_dim1(uint32_t index) {
+  uint32_t x = 0;
+  for (int k = 0; index; index >>= 1, ++k)
+    if (index & 1u) x ^= kSobolDim1[k];
+  return x;
+}
+
+// Each step replaces bit j by bit j XOR (a function of bits below j): additions, odd multiplications and
+// x ^= x * even. Applied to bit-reversed values this is a nested uniform (Owen) scramble: digit j of the result is
+// flipped by a pseudo-random function of the digits before it, which keeps every (0,m,2)-net a net.
+uint32_t scramble_low_to_high(uint32_t x, uint32_t seed) {
+  x += seed;
+  x ^= x * 0x6c8e9cf6u;
+  x *= (seed >> 16) | 1u;
+  x ^= x * 0x2b9a4f1cu;
+  x += seed ^ 0x9e3779b9u;
+  x ^= x * 0xd1b54a32u;
+  x *= (seed << 7) | 1u;
+  return x;
+}
+uint32_t owen_scramble(uint32_t x, uint32_t seed) { return reverse_bits(scramble_low_to_high(reverse_bits(x), seed)); }
+
+uint32_t seed32(uint64_t h) { return static_cast<uint32_t>(h ^ (h >> 32)); }
+
+// 24 significant bits: the largest result is 1 - 2^-24 < 1.
+float to_unit_float(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
+
+// Pseudo-random permutation of [0, n) by a bijection on the next power of two and cycle walking (an image >= n is
+// mapped again; it returns below n in fewer than two steps on average, and always, since the map is a permutation).
+uint32_t permute(uint32_t i, uint32_t n, uint64_t key) {
+  if (n <= 1) return 0;
+  uint32_t mask = n - 1;
+  mask |= mask >> 1, mask |= mask >> 2, mask |= mask >> 4, mask |= mask >> 8, mask |= mask >> 16;
+  const int bits = std::popcount(mask), shift = std::max(1, bits / 2);
+  const uint32_t k0 = static_cast<uint32_t>(key), k1 = static_cast<uint32_t>(key >> 32);
+  do {
+    i ^= k0 & mask;
+    i = (i * 0x2c1b3c6du) & mask;
+    i ^= i >> shift;
+    i = (i + k1) & mask;
+    i = (i * ((k1 >> 3) | 1u)) & mask;
+    i ^= i >> shift;
+    i = (i * 0x297a2d39u) & mask;
+    i ^= (k0 >> 11) & mask;
+    i ^= i >> shift;
+  } while (i >= n);
+  return i;
+}
+
+// The most nearly square factorisation spp = sx * sy with sx >= sy.
+void near_square(uint32_t spp, uint32_t* sx, uint32_t* sy) {
+  uint32_t y = static_cast<uint32_t>(std::sqrt(static_cast<double>(spp)));
+  while (y > 1 && spp % y != 0) --y;
+  *sy = std::max(y, 1u);
+  *sx = spp / *sy;
+}
+
+}  // namespace
+
+std::optional<SamplerType> parse_sampler_type(std::string_view name) {
+  if (name == "independent") return SamplerType::Independent;
+  if (name == "stratified") return SamplerType::Stratified;
+  if (name == "sobol") return SamplerType::Sobol;
+  return std::nullopt;
+}
+
+const char* sampler_type_name(SamplerType type) {
+  switch (type) {
+    case SamplerType::Independent: return "independent";
+    case SamplerType::Stratified: return "stratified";
+    case SamplerType::Sobol: return "sobol";
+  }
+  return "unknown";
+}
+
+Sampler::Sampler(SamplerType type, uint32_t spp, uint32_t seed) : type_(type), spp_(std::max(spp, 1u)), seed_(seed) {
+  near_square(spp_, &strata_x_, &strata_y_);
+}
+
+void Sampler::start(uint32_t px, uint32_t py, uint32_t index) {
+  px_ = px, py_ = py, index_ = index, dim_ = 0;
+  pixel_hash_ = hash_combine(hash_combine(px, py), 0x51ed0000ULL + seed_);
+  rng_.seed(hash_combine(pixel_hash_, index), pixel_hash_);
+}
+
+float Sampler::get1d() {
+  const uint32_t d = dim_++;
+  if (type_ == SamplerType::Independent) return rng_.next_float();
+  const uint64_t key = hash_combine(pixel_hash_, d);
+  if (type_ == SamplerType::Stratified) {
+    // Past spp, each further block of spp samples is a fresh stratified set (its own permutation).
+    const uint32_t block = index_ / spp_;
+    const uint32_t stratum = permute(index_ % spp_, spp_, hash_combine(key, block));
+    return std::min((static_cast<float>(stratum) + rng_.next_float()) / static_cast<float>(spp_), kOneMinusEpsilon);
+  }
+  const uint32_t index = owen_scramble(index_, seed32(mix64(key)));
+  return to_unit_float(owen_scramble(reverse_bits(index), seed32(mix64(key + 1))));
+}
+
+Vec2 Sampler::get2d() {
+  const uint32_t d = dim_;
+  dim_ += 2;
+  if (type_ == SamplerType::Independent) {
+    const float a = rng_.next_float();
+    return {a, rng_.next_float()};
+  }
+  const uint64_t key = hash_combine(pixel_hash_, d);
+  if (type_ == SamplerType::Stratified) {
+    const uint32_t block = index_ / spp_;
+    const uint32_t stratum = permute(index_ % spp_, spp_, hash_combine(key, block));
+    const float jx = rng_.next_float(), jy = rng_.next_float();
+    return {std::min((static_cast<float>(stratum % strata_x_) + jx) / static_cast<float>(strata_x_), kOneMinusEpsilon),
+            std::min((static_cast<float>(stratum / strata_x_) + jy) / static_cast<float>(strata_y_), kOneMinusEpsilon)};
+  }
+  // Shuffling the index by an MSB-first nested scramble maps each aligned block of 2^k indices onto another aligned
+  // block, so the first 2^k samples of a pixel are still a (0,k,2)-net.
+  const uint32_t index = owen_scramble(index_, seed32(mix64(key)));
+  return {to_unit_float(owen_scramble(reverse_bits(index), seed32(mix64(key + 1)))),
+          to_unit_float(owen_scramble(sobol_dim1(index), seed32(mix64(key + 2))))};
+}
+
+}  // namespace lumis
