@@ -1,0 +1,115 @@
+// Spherical emitter, one-sided (emits outward only). From outside, directions are uniform in the cone the sphere
+// subtends (lecture: z_min = sqrt(1 - r^2/|c|^2), p = 1/(2 pi (1 - z_min))); from inside or on the surface the
+// sphere's outside is not visible, so nothing arrives, but sampling stays defined: uniform by area, converted to
+// solid angle.
+#include "core/frame.h"
+#include "core/warp.h"
+#include "lights/light.h"
+
+namespace lumis {
+namespace {
+
+class SphereLight final : public Light {
+ public:
+  SphereLight(Vec3 center, float radius, Color radiance) : c_(center), r_(radius), radiance_(radiance) {}
+
+  /// Solid angle at ctx.p: uniform in the subtended cap (outside), area sampling converted (inside).
+  std::optional<LightSample> sample(const LightSampleContext& ctx, Vec2 u) const override {
+    const Vec3 to_c = c_ - ctx.p;
+    const float d2 = length_squared(to_c);
+    if (!(r_ > 0)) return std::nullopt;
+    if (d2 <= r_ * r_) return sample_area(ctx, u);
+    const float d = std::sqrt(d2);
+    const float one_minus_cos_max = one_minus_cos_from_sin(std::min(r_ / d, 1.0f));
+    // Lecture's cap map, written with 1 - cos(theta) so that tiny caps keep their precision.
+    const float one_minus_z = one_minus_cos_max * u.y;
+    const float z = 1 - one_minus_z;
+    const float sin_theta = safe_sqrt(one_minus_z * (2 - one_minus_z));
+    const float phi = 2 * kPi * u.x - kPi;
+    const Frame frame = Frame::from_normal(to_c / d);
+    const Vec3 wi = normalize(frame.to_world({std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, z}));
+    // Nearest intersection of the ray with the sphere; the discriminant is >= 0 up to rounding inside the cap.
+    const float t = std::max(0.0f, d * z - safe_sqrt(r_ * r_ - d2 * sin_theta * sin_theta));
+    LightSample s;
+    s.wi = wi;
+    s.dist = t;
+    s.p_light = ctx.p + wi * t;
+    s.n_light = normalize(s.p_light - c_);
+    s.pdf = 1 / (2 * kPi * one_minus_cos_max);
+    s.le = dot(s.n_light, -wi) > 0 ? radiance_ : Color{};
+    return s;
+  }
+
+  /// Solid angle at ctx.p, the same density as sample() from this receiver; on_light is the hit on the sphere
+  /// (from outside, only the near crossing carries the density).
+  float pdf(const LightSampleContext& ctx, Vec3 wi, const Hit& on_light) const override {
+    const float d2 = length_squared(c_ - ctx.p);
+    if (!(r_ > 0)) return 0;
+    if (d2 <= r_ * r_) {
+      const Vec3 n = normalize(on_light.p - c_);
+      const float cos_l = std::abs(dot(n, wi));
+      const float dist2 = length_squared(on_light.p - ctx.p);
+      return cos_l > 0 ? dist2 / (cos_l * area()) : 0.0f;
+    }
+    // From outside, a direction in the cone crosses the sphere twice but is sampled once: the density belongs to
+    // the near (outward-facing) crossing, so summing over every crossing of a ray counts it once. The 1e-4 slack
+    // keeps rounding at the silhouette (cos -> 0 on both crossings) on the near side.
+    if (dot(on_light.p - c_, wi) > 1e-4f * r_) return 0;
+    return 1 / (2 * kPi * one_minus_cos_from_sin(std::min(r_ / std::sqrt(d2), 1.0f)));
+  }
+
+  /// Radiance leaving on_light toward world direction w: outward side only.
+  Color le(const Hit& on_light, Vec3 w) const override {
+    return dot(on_light.p - c_, w) > 0 ? radiance_ : Color{};
+  }
+
+  /// Cap solid angle x luminance; 0 below the horizon (n.(c - p) < -r) and from inside (nothing emitted inward).
+  float importance(const LightSampleContext& ctx) const override {
+    const Vec3 to_c = c_ - ctx.p;
+    const float d2 = length_squared(to_c);
+    if (d2 <= r_ * r_) return 0;
+    if (dot(ctx.n, to_c) < -r_) return 0;
+    const float solid_angle = 2 * kPi * one_minus_cos_from_sin(std::min(r_ / std::sqrt(d2), 1.0f));
+    return solid_angle * luminance(radiance_);
+  }
+
+  /// pi x area x luminance (Lambertian emitter).
+  float power() const override { return kPi * area() * luminance(radiance_); }
+  std::string name() const override { return "sphere"; }
+
+ private:
+  float area() const { return 4 * kPi * r_ * r_; }
+
+  // Uniform point on the sphere; solid-angle density dist^2 / (|cos| area) at the receiver.
+  std::optional<LightSample> sample_area(const LightSampleContext& ctx, Vec2 u) const {
+    const Vec3 n = sample_uniform_sphere(u);
+    const Vec3 p = c_ + n * r_;
+    const Vec3 to_p = p - ctx.p;
+    const float dist2 = length_squared(to_p);
+    if (!(dist2 > 0)) return std::nullopt;
+    const float dist = std::sqrt(dist2);
+    const Vec3 wi = to_p / dist;
+    const float cos_l = std::abs(dot(n, wi));
+    if (!(cos_l > 0)) return std::nullopt;
+    LightSample s;
+    s.wi = wi;
+    s.dist = dist;
+    s.p_light = p;
+    s.n_light = n;
+    s.pdf = dist2 / (cos_l * area());
+    s.le = dot(n, -wi) > 0 ? radiance_ : Color{};
+    return s;
+  }
+
+  Vec3 c_;
+  float r_;
+  Color radiance_;
+};
+
+}  // namespace
+
+std::unique_ptr<Light> make_sphere_light(Vec3 center, float radius, Color radiance) {
+  return std::make_unique<SphereLight>(center, radius, radiance);
+}
+
+}  // namespace lumis
