@@ -1,0 +1,181 @@
+// Emissive triangle mesh (world space). A triangle is chosen with probability proportional to an estimate of its
+// emitted power, then a direction toward it by solid angle (Arvo's spherical triangle) or by area, converted to
+// solid angle. The estimate only has to be positive wherever emission can be non-zero: the pdf uses the very same
+// probabilities, so any such choice is unbiased.
+#include <cmath>
+
+#include "core/distribution.h"
+#include "core/warp.h"
+#include "lights/light.h"
+
+namespace lumis {
+namespace {
+
+class MeshLight final : public Light {
+ public:
+  MeshLight(const TriangleMesh& mesh, Color factor, std::optional<Texture> texture, bool two_sided,
+            TriangleSampling method)
+      : positions_(mesh.positions), indices_(mesh.indices), factor_(factor), texture_(std::move(texture)),
+        two_sided_(two_sided), method_(method) {
+    if (texture_) uvs_ = texture_->tex_coord == 1 ? mesh.uv1 : mesh.uv0;
+    const size_t n = indices_.size() / 3;
+    normals_.resize(n);
+    area_.resize(n);
+    std::vector<float> weight(n);
+    Bounds3 box;
+    for (size_t t = 0; t < n; ++t) {
+      const Vec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2);
+      box.expand(a);
+      box.expand(b);
+      box.expand(c);
+      const Vec3 cr = cross(b - a, c - a);
+      area_[t] = 0.5f * length(cr);
+      normals_[t] = area_[t] > 0 ? normalize(cr) : Vec3{};
+      // Luminance at the centroid, plus 1% of the factor's so that a triangle whose centroid texel is black but
+      // whose corners glow keeps a positive probability.
+      const float lum = luminance(radiance_at(t, {1.0f / 3, 1.0f / 3, 1.0f / 3}));
+      weight[t] = area_[t] * (std::max(lum, 0.0f) + 0.01f * std::max(luminance(factor_), 0.0f));
+      // Power and importance use the same weights, so neither is ever 0 where the mesh can emit.
+      power_ += kPi * weight[t] * (two_sided_ ? 2 : 1);
+      total_area_ += area_[t];
+    }
+    triangles_ = Distribution1D(weight);
+    if (!box.empty()) {
+      center_ = box.center();
+      for (uint32_t i : indices_) radius_ = std::max(radius_, length(positions_[i] - center_));
+    }
+  }
+
+  /// Solid angle at ctx.p: pmf(triangle) x the triangle's solid-angle density.
+  std::optional<LightSample> sample(const LightSampleContext& ctx, Vec2 u) const override {
+    if (triangles_.size() == 0) return std::nullopt;
+    float u_tri = 0;
+    const size_t t = triangles_.sample_discrete(u.x, nullptr, &u_tri);
+    if (!emits_toward(t, ctx.p)) return std::nullopt;
+    const Vec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2), n = normals_[t];
+    const Vec2 v{std::min(u_tri, kOneMinusEpsilon), u.y};
+    LightSample s;
+    Vec3 bary;
+    // Spherical sampling fails for reasons of geometry only, never of u, so the fallback is a function of
+    // (receiver, triangle) that pdf() reproduces.
+    const auto ss = method_ == TriangleSampling::SphericalTriangle ? sample_spherical_triangle(ctx.p, a, b, c, v)
+                                                                   : std::nullopt;
+    if (ss) {
+      const float denom = dot(ss->w, n);
+      if (denom == 0) return std::nullopt;
+      s.wi = ss->w;
+      s.dist = dot(a - ctx.p, n) / denom;
+      if (!(s.dist > 0)) return std::nullopt;
+      s.p_light = ctx.p + s.wi * s.dist;
+      s.pdf = ss->pdf;
+      bary = barycentrics(t, s.p_light);
+    } else {
+      const Vec2 b01 = sample_uniform_triangle(v);
+      bary = {b01.x, b01.y, 1 - b01.x - b01.y};
+      s.p_light = a * bary.x + b * bary.y + c * bary.z;
+      const Vec3 to_p = s.p_light - ctx.p;
+      const float dist2 = length_squared(to_p);
+      s.dist = std::sqrt(dist2);
+      if (!(s.dist > 0)) return std::nullopt;
+      s.wi = to_p / s.dist;
+      const float cos_l = std::abs(dot(n, s.wi));
+      if (!(cos_l > 0)) return std::nullopt;
+      s.pdf = dist2 / (cos_l * area_[t]);
+    }
+    s.pdf *= triangles_.pmf(t);
+    s.n_light = n;
+    s.le = radiance_at(t, bary);
+    return s;
+  }
+
+  /// Solid angle at ctx.p for the triangle on_light.prim_id (a direction crossing several triangles has one such
+  /// density per crossing; the caller sums them when it needs the density of the direction).
+  float pdf(const LightSampleContext& ctx, Vec3 wi, const Hit& on_light) const override {
+    const size_t t = on_light.prim_id;
+    if (t >= area_.size() || !emits_toward(t, ctx.p)) return 0;
+    const float pmf = triangles_.pmf(t);
+    if (method_ == TriangleSampling::SphericalTriangle) {
+      if (const auto probe = sample_spherical_triangle(ctx.p, vertex(t, 0), vertex(t, 1), vertex(t, 2), {0.5f, 0.5f}))
+        return probe->pdf * pmf;
+    }
+    const float cos_l = std::abs(dot(normals_[t], wi));
+    if (!(cos_l > 0)) return 0;
+    return length_squared(on_light.p - ctx.p) / (cos_l * area_[t]) * pmf;
+  }
+
+  /// Radiance leaving triangle on_light.prim_id toward w: factor x texture(uv); front face only unless two-sided.
+  Color le(const Hit& on_light, Vec3 w) const override {
+    const size_t t = on_light.prim_id;
+    if (t >= area_.size()) return {};
+    if (!two_sided_ && !(dot(normals_[t], w) > 0)) return {};
+    if (!texture_) return factor_;
+    return factor_ * texture_->sample(on_light.uv[texture_->tex_coord == 1 ? 1 : 0]).xyz();
+  }
+
+  /// Bounding-sphere cap solid angle x mean luminance: a conservative stand-in that is 0 only when the whole
+  /// bounding sphere lies below the receiver's horizon.
+  float importance(const LightSampleContext& ctx) const override {
+    if (!(total_area_ > 0)) return 0;
+    const Vec3 to_c = center_ - ctx.p;
+    if (dot(ctx.n, to_c) < -radius_) return 0;
+    const float d2 = length_squared(to_c);
+    const float solid_angle =
+        d2 <= radius_ * radius_ ? 4 * kPi : 2 * kPi * one_minus_cos_from_sin(radius_ / std::sqrt(d2));
+    const float mean_lum = power_ / (kPi * total_area_ * (two_sided_ ? 2 : 1));
+    return solid_angle * mean_lum;
+  }
+
+  /// Sum over triangles of pi x area x (estimated) luminance, twice when two-sided.
+  float power() const override { return power_; }
+  std::string name() const override { return "mesh"; }
+
+ private:
+  Vec3 vertex(size_t t, int k) const { return positions_[indices_[3 * t + k]]; }
+  bool emits_toward(size_t t, Vec3 p) const {
+    if (!(area_[t] > 0)) return false;
+    return two_sided_ || dot(p - vertex(t, 0), normals_[t]) > 0;
+  }
+  // Barycentrics (weights of vertices 0, 1, 2) of a point in the plane of triangle t.
+  Vec3 barycentrics(size_t t, Vec3 p) const {
+    const Vec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2);
+    const Vec3 n2 = cross(b - a, c - a);
+    const float inv = 1 / dot(n2, n2);
+    const float b1 = dot(cross(p - a, c - a), n2) * inv;
+    const float b2 = dot(cross(b - a, p - a), n2) * inv;
+    return {1 - b1 - b2, b1, b2};
+  }
+  Color radiance_at(size_t t, Vec3 bary) const {
+    if (!texture_) return factor_;
+    Vec2 uv{0, 0};
+    if (!uvs_.empty()) {
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 vk = uvs_[indices_[3 * t + k]];
+        uv = uv + vk * bary[k];
+      }
+    }
+    return factor_ * texture_->sample(uv).xyz();
+  }
+
+  std::vector<Vec3> positions_;
+  std::vector<uint32_t> indices_;
+  std::vector<Vec2> uvs_;
+  std::vector<Vec3> normals_;
+  std::vector<float> area_;
+  Color factor_;
+  std::optional<Texture> texture_;
+  bool two_sided_;
+  TriangleSampling method_;
+  Distribution1D triangles_;
+  float power_ = 0, total_area_ = 0;
+  Vec3 center_;
+  float radius_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Light> make_mesh_light(const TriangleMesh& mesh, Color factor, std::optional<Texture> texture,
+                                       bool two_sided, TriangleSampling method) {
+  return std::make_unique<MeshLight>(mesh, factor, std::move(texture), two_sided, method);
+}
+
+}  // namespace lumis
