@@ -1,0 +1,301 @@
+#include "app/json_reader.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cstdio>
+#include <limits>
+
+#include "app/scene_error.h"
+
+namespace lumis {
+
+namespace {
+
+std::string escape_pointer_token(std::string_view key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~') out += "~0";
+    else if (c == '/') out += "~1";
+    else out += c;
+  }
+  return out;
+}
+
+std::string format_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// A close valid name turns a typo into a one-glance fix; far names would only distract.
+std::string suggestion(std::string_view found, const std::vector<std::string>& valid) {
+  size_t best = std::numeric_limits<size_t>::max();
+  std::string best_name;
+  for (const auto& v : valid) {
+    const size_t d = edit_distance(found, v);
+    if (d < best) best = d, best_name = v;
+  }
+  if (best_name.empty() || best > std::max<size_t>(1, best_name.size() / 3)) return "";
+  return " (did you mean \"" + best_name + "\"?)";
+}
+
+// Builds the document through nlohmann's SAX interface, which (unlike parse()) reports the byte position of
+// every error, overflowing numbers included, and lets us reject duplicate keys that parse() silently merges.
+class DomBuilder : public nlohmann::json_sax<Json> {
+ public:
+  Json root;
+  size_t error_byte = 0;           // 1-based position of the last character read, for syntax errors
+  std::string error_message;       // nlohmann's message for syntax errors
+  std::string duplicate_pointer;   // set when a key repeats within one object
+
+  bool null() override { return place(Json(nullptr)); }
+  bool boolean(bool v) override { return place(Json(v)); }
+  bool number_integer(number_integer_t v) override { return place(Json(v)); }
+  bool number_unsigned(number_unsigned_t v) override { return place(Json(v)); }
+  bool number_float(number_float_t v, const string_t&) override { return place(Json(v)); }
+  bool string(string_t& v) override { return place(Json(std::move(v))); }
+  bool binary(binary_t&) override { return place(Json(nullptr)); }  // text JSON has no binary values
+  bool start_object(std::size_t) override { return open(Json::object()); }
+  bool start_array(std::size_t) override { return open(Json::array()); }
+  bool end_object() override { stack_.pop_back(); return true; }
+  bool end_array() override { stack_.pop_back(); return true; }
+  bool key(string_t& k) override {
+    Frame& f = stack_.back();
+    if (f.value->contains(k)) {
+      duplicate_pointer = pointer() + "/" + escape_pointer_token(k);
+      return false;
+    }
+    f.key = k;
+    return true;
+  }
+  bool parse_error(std::size_t position, const std::string&, const nlohmann::json::exception& ex) override {
+    error_byte = position;
+    error_message = ex.what();
+    return false;
+  }
+
+ private:
+  struct Frame {
+    Json* value;
+    std::string token;  // how the parent reaches this container
+    std::string key;    // the object's current key
+  };
+  std::vector<Frame> stack_;
+  std::string last_token_;
+
+  std::string pointer() const {
+    std::string p;
+    for (size_t i = 1; i < stack_.size(); ++i) p += "/" + stack_[i].token;
+    return p;
+  }
+  Json* insert(Json v) {
+    if (stack_.empty()) {
+      root = std::move(v);
+      return &root;
+    }
+    Frame& f = stack_.back();
+    if (f.value->is_array()) {
+      last_token_ = std::to_string(f.value->size());
+      f.value->push_back(std::move(v));
+      return &f.value->back();
+    }
+    last_token_ = escape_pointer_token(f.key);
+    Json& slot = (*f.value)[f.key];
+    slot = std::move(v);
+    return &slot;
+  }
+  bool place(Json v) {
+    insert(std::move(v));
+    return true;
+  }
+  // Containers on the stack stay put: a parent only grows after its open child is closed.
+  bool open(Json v) {
+    Json* p = insert(std::move(v));
+    stack_.push_back({p, stack_.empty() ? "" : last_token_, ""});
+    return true;
+  }
+};
+
+// nlohmann reports a 1-based count of characters read; turn it into 1-based line and column.
+std::string line_column(const std::string& text, size_t byte) {
+  const size_t index = std::min(byte == 0 ? 0 : byte - 1, text.size());
+  size_t line = 1, line_start = 0;
+  for (size_t i = 0; i < index; ++i)
+    if (text[i] == '\n') ++line, line_start = i + 1;
+  return std::to_string(line) + ":" + std::to_string(index - line_start + 1);
+}
+
+// "[json.exception.parse_error.101] parse error at line 3, column 7: syntax error ..." -> "syntax error ...".
+std::string strip_nlohmann_prefix(std::string m) {
+  if (m.rfind("[json.exception.", 0) == 0) {
+    const size_t close = m.find("] ");
+    if (close != std::string::npos) m = m.substr(close + 2);
+  }
+  if (m.rfind("parse error", 0) == 0) {
+    const size_t colon = m.find(": ");
+    if (colon != std::string::npos) m = m.substr(colon + 2);
+  }
+  if (m.rfind("number overflow", 0) == 0) m += " (numbers must be finite)";
+  return m;
+}
+
+}  // namespace
+
+Json parse_json_text(const std::string& text, const std::string& file) {
+  DomBuilder builder;
+  if (Json::sax_parse(text, &builder)) return std::move(builder.root);
+  if (!builder.duplicate_pointer.empty())
+    throw SceneError(file, builder.duplicate_pointer, "duplicate key (each key may appear once per object)");
+  throw SceneError(file, line_column(text, builder.error_byte),
+                   "invalid JSON: " + strip_nlohmann_prefix(builder.error_message));
+}
+
+std::string describe_json(const Json& v) {
+  switch (v.type()) {
+    case Json::value_t::null: return "null";
+    case Json::value_t::boolean: return v.get<bool>() ? "true" : "false";
+    case Json::value_t::number_integer:
+    case Json::value_t::number_unsigned: return "the number " + v.dump();
+    case Json::value_t::number_float: return "the number " + format_number(v.get<double>());
+    case Json::value_t::string: {
+      std::string s = v.get<std::string>();
+      if (s.size() > 40) s = s.substr(0, 37) + "...";
+      return "the string \"" + s + "\"";
+    }
+    case Json::value_t::array:
+      return "an array of " + std::to_string(v.size()) + (v.size() == 1 ? " element" : " elements");
+    case Json::value_t::object: return "an object";
+    default: return "an unsupported value";
+  }
+}
+
+std::string join_names(const std::vector<std::string>& names) {
+  std::string s;
+  for (size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + names[i];
+  return s;
+}
+
+void JsonNode::fail(const std::string& detail) const { throw SceneError(*file_, pointer_, detail); }
+
+void JsonNode::fail_expected(const std::string& what) const { fail("expected " + what + ", found " + describe_json(*value_)); }
+
+void JsonNode::expect_object(std::initializer_list<std::string_view> allowed) const {
+  if (!value_->is_object()) fail_expected("an object");
+  for (const auto& [key, member] : value_->items()) {
+    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+    const std::vector<std::string> valid(allowed.begin(), allowed.end());
+    throw SceneError(*file_, pointer_ + "/" + escape_pointer_token(key),
+                     "unknown key \"" + key + "\"" + suggestion(key, valid) + "; valid keys: " + join_names(valid));
+  }
+}
+
+bool JsonNode::has(std::string_view key) const { return value_->is_object() && value_->contains(key); }
+
+JsonNode JsonNode::operator[](std::string_view key) const {
+  if (!value_->is_object()) fail_expected("an object");
+  const auto it = value_->find(key);
+  if (it == value_->end()) fail("missing required key \"" + std::string(key) + "\"");
+  return {*it, pointer_ + "/" + escape_pointer_token(key), *file_};
+}
+
+std::optional<JsonNode> JsonNode::find(std::string_view key) const {
+  if (!has(key)) return std::nullopt;
+  return (*this)[key];
+}
+
+std::vector<JsonNode> JsonNode::elements() const {
+  if (!value_->is_array()) fail_expected("an array");
+  std::vector<JsonNode> out;
+  for (size_t i = 0; i < value_->size(); ++i) out.emplace_back((*value_)[i], pointer_ + "/" + std::to_string(i), *file_);
+  return out;
+}
+
+std::vector<std::pair<std::string, JsonNode>> JsonNode::members() const {
+  if (!value_->is_object()) fail_expected("an object");
+  std::vector<std::pair<std::string, JsonNode>> out;
+  for (const auto& [key, member] : value_->items())
+    out.emplace_back(key, JsonNode(member, pointer_ + "/" + escape_pointer_token(key), *file_));
+  return out;
+}
+
+float JsonNode::as_float(float lo, float hi) const {
+  if (!value_->is_number()) fail_expected("a number");
+  const double v = value_->get<double>();
+  // The parser already rejects overflowing literals; a double beyond float range would become infinite here.
+  if (!std::isfinite(v) || std::abs(v) > FLT_MAX) fail_expected("a finite number within float range");
+  if (v < lo || v > hi) {
+    if (hi == INFINITY) fail_expected("a number >= " + format_number(lo));
+    if (lo == -INFINITY) fail_expected("a number <= " + format_number(hi));
+    fail_expected("a number in [" + format_number(lo) + ", " + format_number(hi) + "]");
+  }
+  return static_cast<float>(v);
+}
+
+int64_t JsonNode::as_integer(int64_t lo, int64_t hi) const {
+  const std::string range = hi == std::numeric_limits<int64_t>::max()
+                                ? "an integer >= " + std::to_string(lo)
+                                : "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (value_->is_number_unsigned()) {
+    const uint64_t u = value_->get<uint64_t>();
+    if (u > static_cast<uint64_t>(hi) || (lo > 0 && u < static_cast<uint64_t>(lo))) fail_expected(range);
+    return static_cast<int64_t>(u);
+  }
+  int64_t v = 0;
+  if (value_->is_number_integer()) {
+    v = value_->get<int64_t>();
+  } else if (value_->is_number_float()) {
+    const double d = value_->get<double>();
+    if (!(d == std::floor(d)) || std::abs(d) > 9.0e15) fail_expected(range);
+    v = static_cast<int64_t>(d);
+  } else {
+    fail_expected(range);
+  }
+  if (v < lo || v > hi) fail_expected(range);
+  return v;
+}
+
+bool JsonNode::as_bool() const {
+  if (!value_->is_boolean()) fail_expected("true or false");
+  return value_->get<bool>();
+}
+
+std::string JsonNode::as_string() const {
+  if (!value_->is_string()) fail_expected("a string");
+  return value_->get<std::string>();
+}
+
+Vec3 JsonNode::as_vec3(float lo, float hi) const {
+  if (!value_->is_array() || value_->size() != 3) fail_expected("an array of 3 numbers");
+  const auto e = elements();
+  return {e[0].as_float(lo, hi), e[1].as_float(lo, hi), e[2].as_float(lo, hi)};
+}
+
+Vec2 JsonNode::as_vec2() const {
+  if (!value_->is_array() || value_->size() != 2) fail_expected("an array of 2 numbers");
+  const auto e = elements();
+  return {e[0].as_float(), e[1].as_float()};
+}
+
+size_t JsonNode::as_choice(const std::vector<std::string>& names, std::string_view what) const {
+  const std::string s = as_string();
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == s) return i;
+  fail("unknown " + std::string(what) + " \"" + s + "\"" + suggestion(s, names) + "; valid: " + join_names(names));
+}
+
+}  // namespace lumis

@@ -1,0 +1,75 @@
+// Internal to the scene loader: turns the "materials", "shapes" and "lights" sections of a lumis JSON scene (and
+// glTF contents) into Scene objects. Every error is a SceneError at the JSON pointer of the offending value.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/gltf_loader.h"
+#include "app/json_reader.h"
+#include "core/transform.h"
+#include "integrators/scene.h"
+
+namespace lumis {
+
+/// How a material emits when a shape uses it (JSON "pbr" emissive or a glTF material's emissive).
+struct MaterialEmission {
+  Color factor;
+  std::optional<Texture> texture;
+  bool two_sided = false;
+  bool emits() const { return !is_black(factor); }
+};
+
+class JsonSceneBuilder {
+ public:
+  /// file: the scene file (for messages); relative paths resolve against its folder.
+  JsonSceneBuilder(Scene& scene, const std::string& file);
+
+  void add_materials(const JsonNode& node);  ///< the "materials" object
+  void add_shape(const JsonNode& node);      ///< one element of "shapes"
+  void add_light(const JsonNode& node);      ///< one element of "lights"
+
+  /// Add a loaded glTF's meshes. remap[i] >= 0 replaces glTF material i by scene material remap[i] (with that
+  /// material's emission); otherwise the glTF material is used as it is. Returns whether any mesh emits.
+  bool add_gltf(const GltfScene& gltf, const std::vector<int>& remap, TriangleSampling sampling);
+
+  /// World-space bounds of everything added so far (for framing a camera).
+  const Bounds3& bounds() const { return bounds_; }
+
+ private:
+  Scene& scene_;
+  std::string file_;
+  std::filesystem::path folder_;
+  std::map<std::string, int> material_index_;
+  std::map<int, MaterialEmission> material_emission_;
+  std::map<std::pair<std::string, bool>, std::shared_ptr<const Image>> images_;
+  Bounds3 bounds_;
+
+  /// A path value resolved against the scene's folder; the file must exist.
+  std::string resolve_path(const JsonNode& node) const;
+  /// An image file as a texture (colour textures are decoded from sRGB). Loaded once per path.
+  Texture load_texture(const JsonNode& node, bool srgb);
+  int material_reference(const JsonNode& node) const;
+  std::unique_ptr<Material> parse_material(const JsonNode& node, MaterialEmission& emission);
+  Mat4 parse_transform(const JsonNode& node) const;
+  /// Radiance: three finite non-negative numbers, not all zero.
+  Color parse_radiance(const JsonNode& node) const;
+
+  void add_sphere_shape(const JsonNode& node);
+  void add_quad_shape(const JsonNode& node);
+  void add_mesh_shape(const JsonNode& node);
+  void add_gltf_shape(const JsonNode& node);
+  /// Add a mesh as geometry; with a non-black emission it also becomes a mesh light.
+  void add_mesh(TriangleMesh mesh, const MaterialEmission& emission, TriangleSampling sampling);
+  void add_environment(const JsonNode& node);
+};
+
+/// A camera looking at the centre of `bounds` from the +Z side (slightly above and to the right), with a 40 degree
+/// vertical field of view, far enough back that the bounding sphere fits the image of the given aspect ratio.
+Camera frame_bounds(const Bounds3& bounds, float aspect);
+
+}  // namespace lumis

@@ -1,0 +1,276 @@
+// The "shapes" and "lights" sections. Emitters are geometry too: every light except the environment adds a sphere or
+// mesh carrying its light index, so that a BSDF-sampled ray that hits it knows which light it found.
+#include "app/json_scene.h"
+
+#include <iostream>
+
+#include "app/scene_error.h"
+#include "core/image_io.h"
+
+namespace lumis {
+
+namespace {
+
+const std::vector<std::string> kQuadSampling = {"spherical_rectangle", "area"};
+const std::vector<std::string> kMeshSampling = {"spherical_triangle", "area"};
+
+QuadSampling quad_sampling(const JsonNode& node) {
+  if (!node.has("sampling")) return QuadSampling::SphericalRectangle;
+  return node["sampling"].as_choice(kQuadSampling, "quad sampling") == 0 ? QuadSampling::SphericalRectangle
+                                                                          : QuadSampling::Area;
+}
+
+TriangleSampling mesh_sampling(const JsonNode& node) {
+  if (!node.has("sampling")) return TriangleSampling::SphericalTriangle;
+  return node["sampling"].as_choice(kMeshSampling, "mesh sampling") == 0 ? TriangleSampling::SphericalTriangle
+                                                                          : TriangleSampling::Area;
+}
+
+struct QuadGeometry {
+  Vec3 origin, edge_u, edge_v;
+};
+
+QuadGeometry parse_quad(const JsonNode& node) {
+  QuadGeometry q{node["origin"].as_vec3(), node["edge_u"].as_vec3(), node["edge_v"].as_vec3()};
+  if (!(length(cross(q.edge_u, q.edge_v)) > 0))
+    node["edge_v"].fail("edge_u and edge_v must be non-zero and not parallel (the quad has no area)");
+  return q;
+}
+
+// Triangles (0,1,2), (0,2,3): both wind so that the front face looks along cross(edge_u, edge_v).
+TriangleMesh quad_mesh(const QuadGeometry& q) {
+  TriangleMesh m;
+  m.positions = {q.origin, q.origin + q.edge_u, q.origin + q.edge_u + q.edge_v, q.origin + q.edge_v};
+  m.uv0 = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  return m;
+}
+
+std::vector<Vec3> parse_points(const JsonNode& node) {
+  std::vector<Vec3> out;
+  for (const auto& e : node.elements()) out.push_back(e.as_vec3());
+  return out;
+}
+
+}  // namespace
+
+void JsonSceneBuilder::add_shape(const JsonNode& node) {
+  static const std::vector<std::string> types = {"sphere", "quad", "mesh", "gltf"};
+  switch (node["type"].as_choice(types, "shape type")) {
+    case 0: add_sphere_shape(node); break;
+    case 1: add_quad_shape(node); break;
+    case 2: add_mesh_shape(node); break;
+    default: add_gltf_shape(node); break;
+  }
+}
+
+void JsonSceneBuilder::add_sphere_shape(const JsonNode& node) {
+  node.expect_object({"type", "name", "center", "radius", "material", "emission"});
+  Sphere s;
+  s.center = node["center"].as_vec3();
+  s.radius = node["radius"].as_float(0);
+  if (!(s.radius > 0)) node["radius"].fail_expected("a positive radius");
+  s.material = material_reference(node["material"]);
+  Color emission;
+  if (auto e = node.find("emission")) emission = parse_radiance(*e);
+  else if (auto it = material_emission_.find(s.material); it != material_emission_.end()) emission = it->second.factor;
+  if (!is_black(emission)) {
+    s.light = static_cast<int>(scene_.lights.size());
+    scene_.lights.push_back(make_sphere_light(s.center, s.radius, emission));
+  }
+  bounds_.expand(s.center - Vec3(s.radius));
+  bounds_.expand(s.center + Vec3(s.radius));
+  scene_.geometry.add_sphere(s);
+}
+
+void JsonSceneBuilder::add_quad_shape(const JsonNode& node) {
+  node.expect_object({"type", "name", "origin", "edge_u", "edge_v", "material", "emission", "sampling"});
+  const QuadGeometry q = parse_quad(node);
+  TriangleMesh mesh = quad_mesh(q);
+  if (auto n = node.find("name")) mesh.name = n->as_string();
+  mesh.material = material_reference(node["material"]);
+  const QuadSampling sampling = quad_sampling(node);
+  MaterialEmission emission;
+  if (auto e = node.find("emission")) emission.factor = parse_radiance(*e);
+  else if (auto it = material_emission_.find(mesh.material); it != material_emission_.end()) emission = it->second;
+  // A textured or two-sided emitter needs the general mesh light; a plain one gets the quad light's sampling.
+  if (emission.emits() && !emission.texture && !emission.two_sided) {
+    mesh.light = static_cast<int>(scene_.lights.size());
+    scene_.lights.push_back(make_quad_light(q.origin, q.edge_u, q.edge_v, emission.factor, sampling));
+    emission = {};
+  }
+  add_mesh(std::move(mesh), emission, TriangleSampling::SphericalTriangle);
+}
+
+void JsonSceneBuilder::add_mesh_shape(const JsonNode& node) {
+  node.expect_object({"type", "name", "positions", "indices", "normals", "uvs", "material", "emission", "sampling",
+                      "transform"});
+  TriangleMesh mesh;
+  if (auto n = node.find("name")) mesh.name = n->as_string();
+  mesh.positions = parse_points(node["positions"]);
+  if (mesh.positions.size() < 3) node["positions"].fail_expected("at least 3 positions");
+  const auto indices = node["indices"].elements();
+  if (indices.empty() || indices.size() % 3 != 0)
+    node["indices"].fail_expected("a flat array of vertex indices, 3 per triangle");
+  for (const auto& i : indices)
+    mesh.indices.push_back(static_cast<uint32_t>(i.as_integer(0, static_cast<int64_t>(mesh.positions.size()) - 1)));
+  if (auto n = node.find("normals")) {
+    mesh.normals = parse_points(*n);
+    if (mesh.normals.size() != mesh.positions.size()) n->fail_expected("one normal per position");
+    for (size_t i = 0; i < mesh.normals.size(); ++i) {
+      if (!(length(mesh.normals[i]) > 0)) n->elements()[i].fail("a normal must not be zero");
+    }
+  }
+  if (auto uv = node.find("uvs")) {
+    for (const auto& e : uv->elements()) mesh.uv0.push_back(e.as_vec2());
+    if (mesh.uv0.size() != mesh.positions.size()) uv->fail_expected("one uv per position");
+  }
+  if (auto t = node.find("transform")) {
+    const Mat4 m = parse_transform(*t);
+    for (auto& p : mesh.positions) p = m.apply_point(p);
+    for (auto& n : mesh.normals) n = m.apply_normal(n);
+    // A mirroring transform flips the winding; swapping two corners keeps the front face where the normals are.
+    if (m.determinant3() < 0)
+      for (size_t i = 0; i < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+  }
+  for (auto& n : mesh.normals) n = normalize(n);
+  mesh.material = material_reference(node["material"]);
+  MaterialEmission emission;
+  if (auto e = node.find("emission")) emission.factor = parse_radiance(*e);
+  else if (auto it = material_emission_.find(mesh.material); it != material_emission_.end()) emission = it->second;
+  add_mesh(std::move(mesh), emission, mesh_sampling(node));
+}
+
+void JsonSceneBuilder::add_gltf_shape(const JsonNode& node) {
+  node.expect_object({"type", "file", "transform", "materials", "sampling"});
+  const std::string path = resolve_path(node["file"]);
+  const Mat4 transform = node.find("transform") ? parse_transform(node["transform"]) : Mat4::identity();
+  const TriangleSampling sampling = mesh_sampling(node);
+  GltfScene gltf;
+  try {
+    gltf = load_gltf(path, transform);
+  } catch (const ImageError& e) {
+    node["file"].fail(std::string("cannot read a texture of the glTF file: ") + e.what());
+  }
+  std::vector<int> remap(gltf.materials.size(), -1);
+  if (auto m = node.find("materials")) {
+    for (const auto& [gltf_name, target] : m->members()) {
+      bool found = false;
+      for (size_t i = 0; i < gltf.materials.size(); ++i) {
+        if (gltf.materials[i].name != gltf_name) continue;
+        remap[i] = material_reference(target);
+        found = true;
+      }
+      if (!found) {
+        std::vector<std::string> names;
+        for (const auto& gm : gltf.materials) names.push_back("\"" + gm.name + "\"");
+        target.fail("the glTF file has no material named \"" + gltf_name +
+                    "\"; its materials: " + (names.empty() ? "(none)" : join_names(names)));
+      }
+    }
+  }
+  for (const auto& w : gltf.warnings) std::cerr << path << ": warning: " << w << "\n";
+  add_gltf(gltf, remap, sampling);
+}
+
+bool JsonSceneBuilder::add_gltf(const GltfScene& gltf, const std::vector<int>& remap, TriangleSampling sampling) {
+  // Scene indices of the glTF's own materials, created on first use; the last slot is glTF's default material.
+  std::vector<int> own(gltf.materials.size() + 1, -1);
+  bool any_emitter = false;
+  for (const TriangleMesh& source : gltf.meshes) {
+    TriangleMesh mesh = source;
+    const int gi = mesh.material >= 0 && mesh.material < static_cast<int>(gltf.materials.size())
+                       ? mesh.material
+                       : static_cast<int>(gltf.materials.size());
+    MaterialEmission emission;
+    if (gi < static_cast<int>(remap.size()) && remap[gi] >= 0) {
+      mesh.material = remap[gi];
+      if (auto it = material_emission_.find(mesh.material); it != material_emission_.end()) emission = it->second;
+    } else {
+      const PbrParams params = gi < static_cast<int>(gltf.materials.size()) ? gltf.materials[gi].params : PbrParams{};
+      if (own[gi] < 0) {
+        own[gi] = static_cast<int>(scene_.materials.size());
+        scene_.materials.push_back(make_pbr_material(params));
+      }
+      mesh.material = own[gi];
+      emission = {params.emissive, params.emissive_texture, params.double_sided};
+    }
+    // Cut-outs belong to the geometry, so they stay even when the shading is remapped.
+    if (gi < static_cast<int>(gltf.materials.size()) && !mesh.alpha) {
+      const GltfMaterial& gm = gltf.materials[gi];
+      if (gm.alpha_mode == AlphaMode::Mask)
+        mesh.alpha = AlphaMask{gm.alpha_cutoff, gm.params.base_alpha, gm.params.base_color_texture};
+    }
+    any_emitter = any_emitter || emission.emits();
+    add_mesh(std::move(mesh), emission, sampling);
+  }
+  return any_emitter;
+}
+
+void JsonSceneBuilder::add_mesh(TriangleMesh mesh, const MaterialEmission& emission, TriangleSampling sampling) {
+  for (const Vec3& p : mesh.positions) bounds_.expand(p);
+  if (emission.emits()) {
+    mesh.light = static_cast<int>(scene_.lights.size());
+    scene_.lights.push_back(make_mesh_light(mesh, emission.factor, emission.texture, emission.two_sided, sampling));
+  }
+  scene_.geometry.add_mesh(std::move(mesh));
+}
+
+void JsonSceneBuilder::add_light(const JsonNode& node) {
+  static const std::vector<std::string> types = {"sphere", "quad", "environment"};
+  const size_t type = node["type"].as_choice(types, "light type");
+  const int index = static_cast<int>(scene_.lights.size());
+  if (type == 0) {
+    node.expect_object({"type", "center", "radius", "radiance"});
+    // A pure emitter: material -1, so a ray that hits it sees its radiance and nothing behind it.
+    Sphere s;
+    s.center = node["center"].as_vec3();
+    s.radius = node["radius"].as_float(0);
+    if (!(s.radius > 0)) node["radius"].fail_expected("a positive radius");
+    s.light = index;
+    scene_.lights.push_back(make_sphere_light(s.center, s.radius, parse_radiance(node["radiance"])));
+    bounds_.expand(s.center - Vec3(s.radius));
+    bounds_.expand(s.center + Vec3(s.radius));
+    scene_.geometry.add_sphere(s);
+  } else if (type == 1) {
+    node.expect_object({"type", "origin", "edge_u", "edge_v", "radiance", "sampling"});
+    const QuadGeometry q = parse_quad(node);
+    const Color radiance = parse_radiance(node["radiance"]);
+    scene_.lights.push_back(make_quad_light(q.origin, q.edge_u, q.edge_v, radiance, quad_sampling(node)));
+    TriangleMesh mesh = quad_mesh(q);
+    mesh.light = index;
+    add_mesh(std::move(mesh), {}, TriangleSampling::SphericalTriangle);
+  } else {
+    add_environment(node);
+  }
+}
+
+void JsonSceneBuilder::add_environment(const JsonNode& node) {
+  node.expect_object({"type", "radiance", "file", "scale", "rotation"});
+  if (scene_.environment >= 0) node.fail("only one environment light is allowed; this is the second");
+  if (node.has("radiance") == node.has("file"))
+    node.fail("an environment needs exactly one of \"radiance\" (a constant colour) or \"file\" (an .exr/.hdr map)");
+  scene_.environment = static_cast<int>(scene_.lights.size());
+  if (auto r = node.find("radiance")) {
+    for (const char* k : {"scale", "rotation"})
+      if (node.has(k)) node[k].fail("\"" + std::string(k) + "\" applies to an environment map (\"file\") only");
+    scene_.lights.push_back(make_constant_environment(parse_radiance(*r)));
+    return;
+  }
+  const JsonNode file = node["file"];
+  const std::string path = resolve_path(file);
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext != ".exr" && ext != ".hdr" && ext != ".EXR" && ext != ".HDR")
+    file.fail("an environment map must be a linear .exr or .hdr file, found \"" + ext + "\"");
+  const float scale = node.find("scale") ? node["scale"].as_float(0) : 1.0f;
+  const float rotation = node.find("rotation") ? node["rotation"].as_float() : 0.0f;
+  std::shared_ptr<const Image> image;
+  try {
+    image = std::make_shared<const Image>(read_image(path, false));
+  } catch (const ImageError& e) {
+    file.fail(std::string("cannot read image: ") + e.what());
+  }
+  scene_.lights.push_back(make_image_environment(std::move(image), scale, rotation));
+}
+
+}  // namespace lumis

@@ -1,0 +1,168 @@
+// Scene files: the top level of the lumis JSON format (version, camera, film, render) and glTF files rendered with
+// defaults. Materials, shapes and lights are in json_scene.cpp / json_shapes.cpp.
+#include "app/scene_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+#include "app/json_scene.h"
+#include "app/scene_error.h"
+#include "core/image.h"
+#include "integrators/integrator.h"
+
+namespace lumis {
+
+namespace {
+
+constexpr int kMaxResolution = 16384;  // per side; 16384^2 = 2^28 pixels, about 3 GiB of float RGB accumulators
+constexpr int kGltfImageWidth = 512;
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path, "", "cannot open the file for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void parse_camera(const JsonNode& node, Camera& camera) {
+  node.expect_object({"type", "from", "to", "up", "fov", "near"});
+  if (auto t = node.find("type")) t->as_choice({"perspective"}, "camera type");
+  camera.from = node["from"].as_vec3();
+  camera.to = node["to"].as_vec3();
+  if (auto u = node.find("up")) camera.up = u->as_vec3();
+  const Vec3 dir = camera.to - camera.from;
+  if (!(length(dir) > 0)) node["to"].fail("\"to\" must differ from \"from\" (the camera has no viewing direction)");
+  if (!(length(cross(normalize(dir), camera.up)) > 1e-6f * length(camera.up)))
+    node[node.has("up") ? "up" : "to"].fail("\"up\" must not be zero or parallel to the viewing direction");
+  if (auto f = node.find("fov")) {
+    camera.fov_y_degrees = f->as_float();
+    if (!(camera.fov_y_degrees > 0 && camera.fov_y_degrees < 180))
+      f->fail_expected("a vertical field of view in degrees, strictly between 0 and 180");
+  }
+  if (auto n = node.find("near")) camera.near_clip = n->as_float(0);
+}
+
+void parse_film(const JsonNode& node, RenderSettings& s) {
+  node.expect_object({"width", "height"});
+  const int64_t unbounded = std::numeric_limits<int64_t>::max();
+  int64_t w = s.width, h = s.height;
+  if (auto v = node.find("width")) w = v->as_integer(1, unbounded);
+  if (auto v = node.find("height")) h = v->as_integer(1, unbounded);
+  if (w > kMaxResolution || h > kMaxResolution) {
+    const JsonNode at = w > kMaxResolution ? node["width"] : node["height"];
+    at.fail("absurd resolution " + std::to_string(w) + " x " + std::to_string(h) + ": at most " +
+            std::to_string(kMaxResolution) + " pixels per side (2^28 pixels in all)");
+  }
+  s.width = static_cast<int>(w);
+  s.height = static_cast<int>(h);
+}
+
+template <typename Enum>
+Enum parse_enum(const JsonNode& node, const std::vector<std::string>& names, std::string_view what) {
+  return static_cast<Enum>(node.as_choice(names, what));
+}
+
+void parse_render(const JsonNode& node, RenderSettings& s) {
+  node.expect_object({"integrator", "spp", "max_depth", "rr_depth", "sampler", "seed", "light_selection",
+                      "mis_heuristic", "uniform_measure", "mis_light_probability", "time", "exposure"});
+  if (auto v = node.find("integrator")) s.integrator = integrator_names()[v->as_choice(integrator_names(), "integrator")];
+  if (auto v = node.find("spp")) s.spp = static_cast<uint32_t>(v->as_integer(1, 1 << 30));
+  if (auto v = node.find("max_depth")) s.max_depth = static_cast<int>(v->as_integer(1, 65536));
+  if (auto v = node.find("rr_depth")) s.rr_depth = static_cast<int>(v->as_integer(0, 65536));
+  // The enum orders match these lists (core/sampler.h, lights/light_selection.h, integrators/scene.h).
+  if (auto v = node.find("sampler"))
+    s.sampler = parse_enum<SamplerType>(*v, {"independent", "stratified", "sobol"}, "sampler");
+  if (auto v = node.find("seed")) s.seed = static_cast<uint32_t>(v->as_integer(0, 0xffffffffLL));
+  if (auto v = node.find("light_selection"))
+    s.light_selection = parse_enum<LightSelection>(*v, {"uniform", "power", "importance"}, "light_selection");
+  if (auto v = node.find("mis_heuristic"))
+    s.mis_heuristic = parse_enum<MisHeuristic>(*v, {"balance", "power"}, "mis_heuristic");
+  if (auto v = node.find("uniform_measure"))
+    s.uniform_measure = parse_enum<UniformMeasure>(*v, {"theta_phi", "solid_angle"}, "uniform_measure");
+  if (auto v = node.find("mis_light_probability")) s.mis_light_probability = v->as_float(0, 1);
+  if (auto v = node.find("time")) s.time_budget = v->as_float(0);
+  if (auto v = node.find("exposure")) s.exposure = v->as_float();
+}
+
+std::unique_ptr<Scene> load_json_scene(const std::string& path) {
+  const Json doc = parse_json_text(read_text(path), path);
+  const JsonNode root(doc, "", path);
+  root.expect_object({"version", "camera", "film", "render", "materials", "shapes", "lights"});
+  if (auto v = root.find("version")) {
+    if (!(v->value().is_number_integer() || v->value().is_number_unsigned()) || v->value().get<int64_t>() != 1)
+      v->fail("unsupported scene format version: expected 1, found " + describe_json(v->value()));
+  }
+  auto scene = std::make_unique<Scene>();
+  scene->source = path;
+  if (auto f = root.find("film")) parse_film(*f, scene->settings);
+  if (auto r = root.find("render")) parse_render(*r, scene->settings);
+
+  JsonSceneBuilder builder(*scene, path);
+  if (auto m = root.find("materials")) builder.add_materials(*m);
+  std::vector<JsonNode> shapes, lights;
+  if (auto s = root.find("shapes")) shapes = s->elements();
+  if (auto l = root.find("lights")) lights = l->elements();
+  for (const auto& s : shapes) builder.add_shape(s);
+  for (const auto& l : lights) builder.add_light(l);
+  if (shapes.empty() && lights.empty()) throw SceneError(path, "", "scene is empty: it has no shapes and no lights");
+
+  if (auto c = root.find("camera")) {
+    parse_camera(*c, scene->camera);
+  } else {
+    scene->camera = frame_bounds(builder.bounds(), float(scene->settings.width) / float(scene->settings.height));
+  }
+  scene->finalize();
+  return scene;
+}
+
+// A bare glTF file: its first camera (or a framing one), and a white sky when nothing in it emits.
+std::unique_ptr<Scene> load_gltf_scene(const std::string& path) {
+  auto scene = std::make_unique<Scene>();
+  scene->source = path;
+  GltfScene gltf;
+  try {
+    gltf = load_gltf(path);
+  } catch (const ImageError& e) {
+    throw SceneError(path, "", std::string("cannot read a texture: ") + e.what());
+  }
+  for (const auto& w : gltf.warnings) std::cerr << path << ": warning: " << w << "\n";
+  if (gltf.meshes.empty()) throw SceneError(path, "", "scene is empty: the glTF file has no triangle meshes");
+  if (gltf.camera_aspect && *gltf.camera_aspect > 0) {
+    // Keep 512 pixels across and follow the camera's aspect ratio for the height.
+    scene->settings.width = kGltfImageWidth;
+    scene->settings.height = std::clamp(static_cast<int>(std::lround(kGltfImageWidth / *gltf.camera_aspect)), 1,
+                                        kMaxResolution);
+  }
+  JsonSceneBuilder builder(*scene, path);
+  const bool emits = builder.add_gltf(gltf, std::vector<int>(gltf.materials.size(), -1),
+                                      TriangleSampling::SphericalTriangle);
+  if (!emits) {
+    scene->environment = static_cast<int>(scene->lights.size());
+    scene->lights.push_back(make_constant_environment(Color(1.0f)));
+  }
+  scene->camera = gltf.camera ? *gltf.camera
+                              : frame_bounds(gltf.bounds.empty() ? builder.bounds() : gltf.bounds,
+                                             float(scene->settings.width) / float(scene->settings.height));
+  scene->finalize();
+  return scene;
+}
+
+}  // namespace
+
+std::unique_ptr<Scene> load_scene(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw SceneError(path, "", "no such scene file");
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".json") return load_json_scene(path);
+  if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path);
+  throw SceneError(path, "", "unknown scene file type \"" + ext + "\"; expected .json, .gltf or .glb");
+}
+
+}  // namespace lumis
