@@ -1,0 +1,107 @@
+// Choosing one light per receiver. Importance follows the lecture: c_j = solid angle x luminance, zero when the
+// light is entirely below the horizon; pick j with sum_{l<j} c_l <= C u < sum_{l<=j} c_l by a linear search, so
+// the cost is O(number of lights) per vertex and nothing is allocated.
+#include <array>
+
+#include "lights/light_selection.h"
+
+namespace lumis {
+
+std::optional<LightSelection> parse_light_selection(std::string_view name) {
+  if (name == "uniform") return LightSelection::Uniform;
+  if (name == "power") return LightSelection::Power;
+  if (name == "importance") return LightSelection::Importance;
+  return std::nullopt;
+}
+
+const char* light_selection_name(LightSelection s) {
+  switch (s) {
+    case LightSelection::Uniform: return "uniform";
+    case LightSelection::Power: return "power";
+    case LightSelection::Importance: return "importance";
+  }
+  return "?";
+}
+
+LightSelector::LightSelector(std::vector<const Light*> lights, LightSelection strategy)
+    : lights_(std::move(lights)), strategy_(strategy) {
+  if (strategy_ == LightSelection::Power && !lights_.empty()) {
+    std::vector<float> power(lights_.size());
+    for (size_t i = 0; i < lights_.size(); ++i) power[i] = std::max(lights_[i]->power(), 0.0f);
+    power_ = Distribution1D(power);
+  }
+}
+
+namespace {
+
+// Importance clamped to a finite, non-negative value (a NaN must neither be chosen nor poison the sum).
+float clean_importance(const Light* light, const LightSampleContext& ctx) {
+  const float c = light->importance(ctx);
+  return std::isfinite(c) && c > 0 ? c : 0.0f;
+}
+
+// Small scenes keep the per-vertex importances on the stack; larger ones recompute them in the search (the same
+// calls in the same order, so the values are identical).
+constexpr size_t kCachedImportances = 64;
+
+}  // namespace
+
+std::optional<LightChoice> LightSelector::sample(const LightSampleContext& ctx, float u) const {
+  const size_t n = lights_.size();
+  if (n == 0) return std::nullopt;
+  switch (strategy_) {
+    case LightSelection::Uniform: {
+      const int i = std::min(static_cast<int>(u * static_cast<float>(n)), static_cast<int>(n) - 1);
+      return LightChoice{i, 1.0f / static_cast<float>(n)};
+    }
+    case LightSelection::Power: {
+      const size_t i = power_.sample_discrete(u);
+      const float p = power_.pmf(i);
+      if (!(p > 0)) return std::nullopt;
+      return LightChoice{static_cast<int>(i), p};
+    }
+    case LightSelection::Importance: break;
+  }
+  std::array<float, kCachedImportances> cache;
+  const bool cached = n <= kCachedImportances;
+  float total = 0;
+  for (size_t j = 0; j < n; ++j) {
+    const float c = clean_importance(lights_[j], ctx);
+    if (cached) cache[j] = c;
+    total += c;
+  }
+  if (!(total > 0)) return std::nullopt;
+  const float target = total * u;
+  float running = 0;
+  int last_positive = -1;
+  float last_c = 0;
+  for (size_t j = 0; j < n; ++j) {
+    const float c = cached ? cache[j] : clean_importance(lights_[j], ctx);
+    if (c <= 0) continue;
+    running += c;
+    last_positive = static_cast<int>(j);
+    last_c = c;
+    if (target < running) return LightChoice{last_positive, c / total};
+  }
+  // Only when total * u rounded up to total: the last light with positive importance owns the top of [0, C).
+  return LightChoice{last_positive, last_c / total};
+}
+
+float LightSelector::pmf(const LightSampleContext& ctx, int index) const {
+  const size_t n = lights_.size();
+  if (index < 0 || static_cast<size_t>(index) >= n) return 0;
+  switch (strategy_) {
+    case LightSelection::Uniform: return 1.0f / static_cast<float>(n);
+    case LightSelection::Power: return power_.pmf(static_cast<size_t>(index));
+    case LightSelection::Importance: break;
+  }
+  float total = 0, mine = 0;
+  for (size_t j = 0; j < n; ++j) {
+    const float c = clean_importance(lights_[j], ctx);
+    if (static_cast<int>(j) == index) mine = c;
+    total += c;
+  }
+  return total > 0 ? mine / total : 0.0f;
+}
+
+}  // namespace lumis
