@@ -1,0 +1,76 @@
+// GGX microfacet reflection (Walter et al. 2007) with height-correlated Smith shadowing, Schlick Fresnel and
+// visible-normal sampling, and the pure-specular material built on it.
+#include <cmath>
+
+#include "materials/fresnel.h"
+#include "materials/material.h"
+#include "materials/shading.h"
+
+namespace lumis {
+
+/// Local frame, cosine excluded: D(h) G2(wo, wi) F(wo.h) / (4 cos_o cos_i) with h the half vector.
+Color GgxBsdf::f(Vec3 wo, Vec3 wi) const {
+  if (!(wo.z > 0 && wi.z > 0)) return Color(0.0f);
+  const Vec3 sum = wo + wi;
+  const float l2 = length_squared(sum);
+  if (!(l2 > 0)) return Color(0.0f);
+  const float len = std::sqrt(l2);
+  const Vec3 h = sum / len;
+  const float d = ggx_d(h, alpha, alpha);
+  const float g = ggx_g2(wo, wi, alpha, alpha);
+  // For unit wo, wi: wo.h = wi.h = |wo + wi| / 2. This form is symmetric by construction (reciprocity survives
+  // rounding) and stays accurate when wo and wi are nearly opposite, where h itself is ill-conditioned.
+  return schlick_fresnel(f0, 0.5f * len) * (d * g / (4.0f * wo.z * wi.z));
+}
+
+/// Solid angle of wi: the visible-normal density of h times the reflection Jacobian 1 / (4 wo.h).
+float GgxBsdf::pdf(Vec3 wo, Vec3 wi) const {
+  if (!(wo.z > 0 && wi.z > 0)) return 0;
+  const Vec3 sum = wo + wi;
+  const float l2 = length_squared(sum);
+  if (!(l2 > 0)) return 0;
+  const Vec3 h = sum / std::sqrt(l2);
+  const float cos_oh = dot(wo, h);
+  if (!(cos_oh > 0)) return 0;
+  return ggx_vndf_pdf(wo, h, alpha, alpha) / (4.0f * cos_oh);
+}
+
+/// Local frame: a visible normal for wo, mirrored; fails when the mirrored direction is below the surface.
+std::optional<BsdfSample> GgxBsdf::sample(Vec3 wo, float /*u_lobe*/, Vec2 u) const {
+  if (!(wo.z > 0)) return std::nullopt;
+  const Vec3 wm = sample_ggx_vndf(wo, alpha, alpha, u, method);
+  const Vec3 wi = reflect(wo, wm);
+  if (!(wi.z > 0)) return std::nullopt;
+  // Evaluate through f() and pdf() so that a sample carries exactly what they return for (wo, wi).
+  const float p = pdf(wo, wi);
+  if (!(p > 0) || !std::isfinite(p)) return std::nullopt;
+  return BsdfSample{wi, f(wo, wi), p};
+}
+
+namespace {
+
+class GgxMaterial final : public Material {
+ public:
+  GgxMaterial(Color f0, float roughness)
+      : f0_(min(max(f0, Color(0.0f)), Color(1.0f))),
+        alpha_(std::max(sqr(clamp(roughness, 0.0f, 1.0f)), kMinGgxAlpha)) {}
+
+  /// World-space shading frame around hit.ns with the GGX lobe (alpha = roughness^2, as glTF).
+  ShadingPoint shade(const Hit& hit) const override {
+    return {base_shading_frame(hit), GgxBsdf{f0_, alpha_}};
+  }
+  /// The normal-incidence reflectance stands in for the albedo AOV.
+  Color albedo(const Hit& /*hit*/) const override { return f0_; }
+
+ private:
+  Color f0_;
+  float alpha_;
+};
+
+}  // namespace
+
+std::unique_ptr<Material> make_ggx_material(Color f0, float roughness) {
+  return std::make_unique<GgxMaterial>(f0, roughness);
+}
+
+}  // namespace lumis
