@@ -150,16 +150,23 @@ DirectionalHistogram directional_histogram(const std::function<std::optional<Vec
   DirectionalHistogram h;
   h.observed.assign(static_cast<size_t>(nz) * np, 0.0);
   h.expected.assign(h.observed.size(), 0.0);
+  std::vector<float> edge(nz + 1);
+  for (int i = 0; i <= nz; ++i) edge[i] = static_cast<float>(-1.0 + 2.0 * i / nz);
   Pcg32 rng(config.seed, 0x5eedULL);
   for (uint64_t s = 0; s < config.samples; ++s) {
     const std::optional<Vec3> w = sample(rng);
     if (!w || !is_finite(*w)) continue;
     const double len = std::sqrt(double(w->x) * w->x + double(w->y) * w->y + double(w->z) * w->z);
     if (!(len > 0)) continue;
-    const double z = std::clamp(w->z / len, -1.0, 1.0);
+    // Bin by the float z the pdf sees, against float bin edges: a support boundary written as a float literal
+    // (a cap with cos_max = 0.9f) then falls on the same side of the edge for the samples as for the pdf.
+    // Only directions that are not unit to float precision are renormalised.
+    const float z = std::abs(len - 1.0) > 1e-6 ? static_cast<float>(std::clamp(w->z / len, -1.0, 1.0)) : w->z;
+    int iz = std::clamp(static_cast<int>((double(z) + 1) * 0.5 * nz), 0, nz - 1);
+    if (iz + 1 < nz && z >= edge[iz + 1]) ++iz;
+    if (iz > 0 && z < edge[iz]) --iz;
     double phi = std::atan2(double(w->y), double(w->x));
     if (phi < 0) phi += 2 * kPiD;
-    const int iz = std::clamp(static_cast<int>((z + 1) * 0.5 * nz), 0, nz - 1);
     const int ip = std::clamp(static_cast<int>(phi / (2 * kPiD) * np), 0, np - 1);
     h.observed[static_cast<size_t>(iz) * np + ip] += 1;
   }

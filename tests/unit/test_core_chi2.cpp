@@ -118,6 +118,21 @@ TEST(Chi2, DirectionsHandleDiscontinuityInsideCells) {
   EXPECT_TRUE(r.passed) << r.message;
 }
 
+TEST(Chi2, DirectionsBinSamplesOnAFloatRimWithThePdf) {
+  // A cap with cos_max = 0.9f (just below the bin edge 0.9): samples exactly on the rim are inside the support for
+  // the float pdf and must be binned with the cap, not in the empty row below (found by `lumis warptest`).
+  const float cos_max = 0.9f;
+  auto sample = [&](Pcg32& rng) -> std::optional<Vec3> {
+    const bool rim = rng.next_float() < 0.001f;
+    const double z = rim ? double(cos_max) : 1 - (1 - double(cos_max)) * rng.next_double();
+    const double phi = 2 * kPiD * rng.next_double(), s = std::sqrt(1 - z * z);
+    return Vec3(float(s * std::cos(phi)), float(s * std::sin(phi)), float(z));
+  };
+  auto pdf = [&](Vec3 w) { return w.z >= cos_max ? 1.0 / (2 * kPiD * (1 - double(cos_max))) : 0.0; };
+  const ChiSquareResult r = chi_square_directions(sample, pdf, DirectionalTest{});
+  EXPECT_TRUE(r.passed) << r.message;
+}
+
 TEST(Chi2, DirectionsCountFailedSamplesAsMissing) {
   // Dropping 2% of samples while claiming a normalised pdf must be rejected.
   auto lossy = [](Pcg32& rng) -> std::optional<Vec3> {

@@ -35,7 +35,8 @@ ChiSquareResult directions(Vec3 (*warp)(Vec2), const std::function<double(Vec3)>
 }
 
 TEST(Warp, UniformThetaPhiChiSquare) {
-  const auto r = directions(sample_uniform_theta_phi_hemisphere, [](Vec3 w) { return uniform_theta_phi_hemisphere_pdf(w); }, 1);
+  const auto r = directions(
+      sample_uniform_theta_phi_hemisphere, [](Vec3 w) { return uniform_theta_phi_hemisphere_pdf(w); }, 1);
   EXPECT_TRUE(r.passed) << r.message;
 }
 TEST(Warp, UniformHemisphereChiSquare) {

@@ -1,0 +1,170 @@
+// `lumis warptest`: a table from name to (sampling routine, density) and the picture of the two histograms.
+// To add a warp, add one row to registry(): its sampler returns a direction (nullopt when it fails) and its pdf is
+// the solid-angle density in the same frame.
+#include "app/warptest.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <iomanip>
+#include <optional>
+
+#include "core/chi2.h"
+#include "core/image_io.h"
+#include "core/warp.h"
+
+namespace lumis {
+
+namespace {
+
+struct Warp {
+  std::function<std::optional<Vec3>(Vec2)> sample;
+  std::function<double(Vec3)> pdf;
+};
+
+struct WarpEntry {
+  const char* name;
+  const char* param_help;  ///< what `param` means, or nullptr when unused
+  float default_param;
+  std::function<Warp(float)> make;
+};
+
+// GGX visible normals are tested for a view direction 45 degrees off the normal, where the visible-normal density is
+// clearly asymmetric.
+const Vec3 kGgxWo{0.70710678f, 0.0f, 0.70710678f};
+
+Warp ggx_warp(VndfMethod method, float alpha) {
+  return {[=](Vec2 u) -> std::optional<Vec3> { return sample_ggx_vndf(kGgxWo, alpha, alpha, u, method); },
+          [=](Vec3 wm) { return double(ggx_vndf_pdf(kGgxWo, wm, alpha, alpha)); }};
+}
+
+// A spherical triangle seen from the origin, above the horizon and off the pole, about 0.3 sr.
+Warp spherical_triangle_warp() {
+  const Vec3 a{-0.3f, -0.2f, 1.0f}, b{0.6f, -0.1f, 0.8f}, c{0.1f, 0.6f, 0.9f};
+  const Vec3 o{0, 0, 0};
+  const float omega = triangle_solid_angle(o, a, b, c);
+  // Inside the triangle iff w is on the inner side of all three great circles through its edges.
+  const Vec3 nab = cross(a, b), nbc = cross(b, c), nca = cross(c, a);
+  const float orient = dot(nab, c) > 0 ? 1.0f : -1.0f;
+  return {[=](Vec2 u) -> std::optional<Vec3> {
+            const auto s = sample_spherical_triangle(o, a, b, c, u);
+            if (!s) return std::nullopt;
+            return s->w;
+          },
+          [=](Vec3 w) {
+            const bool inside = orient * dot(nab, w) >= 0 && orient * dot(nbc, w) >= 0 && orient * dot(nca, w) >= 0;
+            return inside ? 1.0 / omega : 0.0;
+          }};
+}
+
+const std::vector<WarpEntry>& registry() {
+  static const std::vector<WarpEntry> entries = {
+      {"uniform_theta_phi", nullptr, 0,
+       [](float) {
+         return Warp{sample_uniform_theta_phi_hemisphere,
+                     [](Vec3 w) { return double(uniform_theta_phi_hemisphere_pdf(w)); }};
+       }},
+      {"uniform_hemisphere", nullptr, 0,
+       [](float) { return Warp{sample_uniform_hemisphere, [](Vec3 w) { return double(uniform_hemisphere_pdf(w)); }}; }},
+      {"cosine_hemisphere", nullptr, 0,
+       [](float) { return Warp{sample_cosine_hemisphere, [](Vec3 w) { return double(cosine_hemisphere_pdf(w)); }}; }},
+      {"uniform_sphere", nullptr, 0,
+       [](float) { return Warp{sample_uniform_sphere, [](Vec3) { return double(uniform_sphere_pdf()); }}; }},
+      {"spherical_cap", "cos_max", 0.9f,
+       [](float cos_max) {
+         return Warp{[=](Vec2 u) -> std::optional<Vec3> { return sample_spherical_cap(u, cos_max); },
+                     [=](Vec3 w) { return double(spherical_cap_pdf(w, cos_max)); }};
+       }},
+      {"ggx_heitz", "alpha", 0.3f, [](float alpha) { return ggx_warp(VndfMethod::Heitz2018, alpha); }},
+      {"ggx_cap", "alpha", 0.3f, [](float alpha) { return ggx_warp(VndfMethod::SphericalCap2023, alpha); }},
+      {"spherical_triangle", nullptr, 0, [](float) { return spherical_triangle_warp(); }},
+  };
+  return entries;
+}
+
+// A black-purple-red-orange-yellow ramp, defined in display (sRGB) values and decoded so that the PNG writer's
+// sRGB encoding reproduces it.
+Color colormap(double t) {
+  static const Color stops[] = {{0, 0, 0}, {0.25f, 0.05f, 0.45f}, {0.85f, 0.2f, 0.3f}, {0.98f, 0.6f, 0.1f},
+                                {1.0f, 1.0f, 0.75f}};
+  const double x = std::clamp(t, 0.0, 1.0) * 4.0;
+  const int i = std::min(static_cast<int>(x), 3);
+  const Color c = lerp(static_cast<float>(x - i), stops[i], stops[i + 1]);
+  return {srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z)};
+}
+
+// Observed (left) and expected (right) counts, phi left to right, cos(theta) = 1 at the top, one colour scale
+// (square root of the count, so that the tails of peaked densities stay visible).
+Image histogram_picture(const DirectionalHistogram& h, int nz, int np) {
+  constexpr int kCell = 8, kGap = 16;
+  const int pw = np * kCell, ph = nz * kCell;
+  Image img(2 * pw + kGap, ph, {"R", "G", "B"});
+  double vmax = 0;
+  for (size_t i = 0; i < h.observed.size(); ++i) vmax = std::max({vmax, h.observed[i], h.expected[i]});
+  if (vmax <= 0) vmax = 1;
+  for (int y = 0; y < ph; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      Color c(srgb_to_linear(0.5f));
+      const int panel = x < pw ? 0 : (x >= pw + kGap ? 1 : -1);
+      if (panel >= 0) {
+        const int ip = (x - panel * (pw + kGap)) / kCell, iz = nz - 1 - y / kCell;
+        const std::vector<double>& v = panel == 0 ? h.observed : h.expected;
+        c = colormap(std::sqrt(v[static_cast<size_t>(iz) * np + ip] / vmax));
+      }
+      for (int k = 0; k < 3; ++k) img.at(x, y, k) = c[k];
+    }
+  return img;
+}
+
+}  // namespace
+
+std::vector<std::string> warptest_names() {
+  std::vector<std::string> names;
+  for (const WarpEntry& e : registry()) names.emplace_back(e.name);
+  return names;
+}
+
+int run_warptest(const std::string& name, float param, uint64_t samples, const std::string& out_png,
+                 std::ostream& out) {
+  const auto& entries = registry();
+  const auto it = std::find_if(entries.begin(), entries.end(), [&](const WarpEntry& e) { return name == e.name; });
+  if (it == entries.end()) {
+    out << "warptest: unknown warp '" << name << "'. Valid names:";
+    for (const WarpEntry& e : entries) out << ' ' << e.name;
+    out << '\n';
+    return 2;
+  }
+  if (std::isnan(param)) param = it->default_param;
+  const Warp warp = it->make(param);
+
+  DirectionalTest cfg;
+  if (samples > 0) cfg.samples = samples;
+  const DirectionalHistogram h = directional_histogram(
+      [&](Pcg32& rng) -> std::optional<Vec3> {
+        const float u0 = rng.next_float(), u1 = rng.next_float();
+        return warp.sample(Vec2(u0, u1));
+      },
+      warp.pdf, cfg);
+  const ChiSquareResult r = chi_square_test(h.observed, h.expected, cfg.alpha, cfg.num_tests);
+
+  out << "warptest " << name;
+  if (it->param_help) out << " (" << it->param_help << " = " << param << ")";
+  out << ": " << cfg.samples << " samples in " << cfg.cos_theta_bins << " x " << cfg.phi_bins
+      << " (cos theta, phi) cells, seed " << cfg.seed << '\n';
+  out << std::setprecision(6) << "  chi-square statistic " << r.statistic << ", dof " << r.dof << ", p-value "
+      << r.p_value << ", alpha " << r.significance << '\n';
+  out << "  " << (r.passed ? "PASSED" : "FAILED") << ": " << r.message << '\n';
+
+  if (!out_png.empty()) {
+    try {
+      write_image(out_png, histogram_picture(h, cfg.cos_theta_bins, cfg.phi_bins));
+      out << "  wrote " << out_png << " (left: observed, right: expected)\n";
+    } catch (const std::exception& e) {
+      out << "warptest: " << e.what() << '\n';
+      return 3;
+    }
+  }
+  return r.passed ? 0 : 1;
+}
+
+}  // namespace lumis
