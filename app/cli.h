@@ -32,5 +32,7 @@ bool stderr_is_tty();
 
 void register_render_command(CLI::App& app, int& exit_code);
 void register_warptest_command(CLI::App& app, int& exit_code);
+void register_diff_command(CLI::App& app, int& exit_code);
+void register_compare_command(CLI::App& app, int& exit_code);
 
 }  // namespace lumis

@@ -157,7 +157,7 @@ void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, 
     // b1, b2 unused: the caller set hit.p; reproject it onto the sphere to remove the error of o + t d.
     const Vec3 n = normalize(hit.p - s.center);
     hit.p = s.center + n * s.radius;
-    hit.p_error = abs(hit.p) * kErrorScale;
+    hit.p_error = Vec3((max_component(abs(s.center)) + s.radius) * kErrorScale);
     hit.ng = hit.ns = n;
     hit.tangent = {};
     hit.uv[0] = hit.uv[1] = {};
@@ -171,7 +171,9 @@ void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, 
   const float b0 = 1 - b1 - b2;
   const Vec3 p0 = m.positions[i0], p1 = m.positions[i1], p2 = m.positions[i2];
   hit.p = p0 * b0 + p1 * b1 + p2 * b2;
-  hit.p_error = (abs(p0 * b0) + abs(p1 * b1) + abs(p2 * b2)) * kErrorScale;
+  // The same bound on every axis: Embree's intersection error grows with the coordinates involved, not just
+  // with the hit point's own (an axis-aligned plane through the origin still needs an offset).
+  hit.p_error = Vec3(max_component(max(abs(p0), max(abs(p1), abs(p2)))) * kErrorScale);
   const Vec3 c = cross(p1 - p0, p2 - p0);
   const float cl = length(c);
   hit.ng = cl > 0 ? c / cl : Vec3(0, 0, 1);

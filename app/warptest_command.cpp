@@ -1,0 +1,31 @@
+// `lumis warptest NAME [--param P] [--samples N] [-o OUT.png]`.
+#include <cmath>
+#include <iostream>
+
+#include "app/cli.h"
+#include "app/warptest.h"
+
+namespace lumis {
+
+void register_warptest_command(CLI::App& app, int& exit_code) {
+  struct Args {
+    std::string name, out = "warptest.png";
+    float param = NAN;
+    uint64_t samples = 1'000'000;
+  };
+  auto args = std::make_shared<Args>();
+  std::string names;
+  for (const auto& n : warptest_names()) names += (names.empty() ? "" : ", ") + n;
+  CLI::App* cmd = app.add_subcommand(
+      "warptest", "Chi-square test of a sampling routine against its pdf, with a picture of both histograms");
+  cmd->add_option("name", args->name, "Warp to test: " + names)->required();
+  cmd->add_option("--param", args->param, "cos_max for spherical_cap, alpha for ggx_* (default: the routine's own)");
+  cmd->add_option("--samples", args->samples, "Number of samples")->check(CLI::Range(1000ull, 1000000000ull));
+  cmd->add_option("-o,--output", args->out, "Histogram picture (PNG), '' for none");
+  cmd->callback([args, &exit_code] {
+    const int rc = run_warptest(args->name, args->param, args->samples, args->out, std::cout);
+    exit_code = rc == 2 ? 2 : (rc == 0 ? 0 : 1);
+  });
+}
+
+}  // namespace lumis
