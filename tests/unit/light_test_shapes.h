@@ -77,14 +77,4 @@ inline TriangleMesh quad_mesh(Vec3 o, Vec3 u, Vec3 v) {
   return m;
 }
 
-/// A frame in which direction `axis` becomes +z (for histograms whose fine cells should sit on the light).
-inline Vec3 rotate_to_z(Vec3 w, Vec3 axis) {
-  const Vec3 n = normalize(axis);
-  const float sign = std::copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z);
-  const float b = n.x * n.y * a;
-  const Vec3 s{1 + sign * n.x * n.x * a, sign * b, -sign * n.x}, t{b, sign + n.y * n.y * a, -n.y};
-  return {dot(w, s), dot(w, t), dot(w, n)};
-}
-
 }  // namespace lumis::test

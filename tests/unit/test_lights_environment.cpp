@@ -45,7 +45,7 @@ TEST(EnvironmentLight, MapDirectionsFollowPdf) {
   cfg.samples = 200'000;
   cfg.num_tests = kChiTests;
   cfg.seed = 81;
-  cfg.integration_resolution = 4;
+  cfg.integration_resolution = 2;  // adaptive refinement does the work at the edges
   const Hit none;
   const auto r = chi_square_directions(
       [&](Pcg32& rng) -> std::optional<Vec3> {

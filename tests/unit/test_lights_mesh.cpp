@@ -82,7 +82,7 @@ TEST(MeshLight, DirectionsFollowPdf) {
       cfg.samples = 150'000;
       cfg.num_tests = kChiTests;
       cfg.seed = m == TriangleSampling::Area ? 51 : 52;
-      cfg.integration_resolution = 4;
+      cfg.integration_resolution = 2;  // adaptive refinement does the work at the edges
       const auto r = chi_square_directions(
           [&](Pcg32& rng) -> std::optional<Vec3> {
             const auto s = light->sample(c.ctx, {rng.next_float(), rng.next_float()});
