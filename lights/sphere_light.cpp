@@ -40,8 +40,8 @@ class SphereLight final : public Light {
     return s;
   }
 
-  /// Solid angle at ctx.p, the same density as sample() from this receiver; on_light is the hit on the sphere
-  /// (from outside, only the near crossing carries the density).
+  /// Solid angle at ctx.p, the same density as sample() from this receiver; on_light is a hit on the sphere.
+  /// The density is per direction: from outside, a ray crossing the sphere twice must be counted once (either hit).
   float pdf(const LightSampleContext& ctx, Vec3 wi, const Hit& on_light) const override {
     const float d2 = length_squared(c_ - ctx.p);
     if (!(r_ > 0)) return 0;
@@ -51,10 +51,6 @@ class SphereLight final : public Light {
       const float dist2 = length_squared(on_light.p - ctx.p);
       return cos_l > 0 ? dist2 / (cos_l * area()) : 0.0f;
     }
-    // From outside, a direction in the cone crosses the sphere twice but is sampled once: the density belongs to
-    // the near (outward-facing) crossing, so summing over every crossing of a ray counts it once. The 1e-4 slack
-    // keeps rounding at the silhouette (cos -> 0 on both crossings) on the near side.
-    if (dot(on_light.p - c_, wi) > 1e-4f * r_) return 0;
     return 1 / (2 * kPi * one_minus_cos_from_sin(std::min(r_ / std::sqrt(d2), 1.0f)));
   }
 
