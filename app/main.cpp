@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   lumis::register_render_command(app, exit_code);
   lumis::register_warptest_command(app, exit_code);
+  lumis::register_diff_command(app, exit_code);
+  lumis::register_compare_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

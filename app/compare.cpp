@@ -1,0 +1,321 @@
+// `lumis compare [SCENE]`: the pipeline behind compare.h. Exit codes: 0 done, 1 scene or I/O error, 2 usage error.
+#include "app/compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "app/cli.h"
+#include "app/diff.h"
+#include "app/montage.h"
+#include "app/plot.h"
+#include "app/scene_error.h"
+#include "app/scene_loader.h"
+#include "core/image_io.h"
+#include "integrators/render.h"
+
+namespace lumis {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CompareArgs {
+  std::string scene;
+  std::string output;
+  std::string integrators = "uniform,bsdf,light,mis,nee_mis";
+  std::string reference;
+  std::optional<uint32_t> reference_spp;
+  std::string crop;
+  bool convergence = false;
+  bool quiet = false;
+  RenderOverrides overrides;
+};
+
+/// Usage errors found after parsing (bad lists, crop outside the image, mismatched reference).
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+std::string read_file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  // Same-folder temporary plus rename, like write_image: readers never see half a report.
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error(path.string() + ": cannot write");
+  }
+  fs::rename(tmp, path);
+}
+
+struct Rendered {
+  Image image;
+  RenderStats stats;
+};
+
+Rendered render_variant(Scene& scene, const RenderSettings& settings, uint32_t spp, double time_budget) {
+  scene.settings = settings;
+  const std::unique_ptr<Integrator> integrator = make_integrator(settings);
+  Film film(settings.width, settings.height);
+  RenderOptions ro;
+  // Equal time: ask for far more samples than fit and let the budget stop the render at a pass boundary.
+  ro.spp = time_budget > 0 ? (1u << 20) : spp;
+  ro.time_budget = time_budget;
+  ro.threads = settings.threads;
+  Rendered r;
+  r.stats = render(scene, *integrator, film, ro);
+  r.image = film.to_image();
+  return r;
+}
+
+// Keeps only the R, G, B channels (montage, PNG and metrics need nothing else).
+Image rgb_only(const Image& img) {
+  const std::vector<int> c = rgb_channels(img, "image");
+  Image out(img.width, img.height, {"R", "G", "B"});
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int k = 0; k < 3; ++k) out.at(x, y, k) = img.at(x, y, c[k]);
+  return out;
+}
+
+// Top of the shared error scale: the largest 99.5th percentile over variants, so one firefly does not flatten
+// every error picture (larger errors show in the top colour).
+double shared_error_scale(const std::vector<std::vector<float>>& maps) {
+  double scale = 0;
+  for (std::vector<float> m : maps) {
+    m.erase(std::remove_if(m.begin(), m.end(), [](float v) { return !std::isfinite(v); }), m.end());
+    if (m.empty()) continue;
+    const size_t k = std::min(m.size() - 1, static_cast<size_t>(0.995 * static_cast<double>(m.size())));
+    std::nth_element(m.begin(), m.begin() + static_cast<std::ptrdiff_t>(k), m.end());
+    scale = std::max(scale, static_cast<double>(m[k]));
+  }
+  return scale > 0 ? scale : 1e-6;
+}
+
+std::string timing(double seconds) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, seconds < 10 ? "%.2fS" : "%.0fS", seconds);
+  return buf;
+}
+
+int run_compare(const CompareArgs& args) {
+  const std::string scene_path = args.scene.empty() ? default_scene_path() : args.scene;
+  std::unique_ptr<Scene> scene;
+  std::vector<std::string> names;
+  std::optional<CropRect> crop;
+  try {
+    if (args.overrides.integrator) throw UsageError("compare: use --integrators (a list), not --integrator");
+    names = parse_integrator_list(args.integrators);
+    scene = load_scene(scene_path);
+    apply_overrides(args.overrides, scene->settings);
+    scene->update_light_selector();
+    if (!args.crop.empty()) crop = parse_crop(args.crop, scene->settings.width, scene->settings.height);
+  } catch (const SceneError& e) {
+    std::cerr << "lumis compare: " << e.what() << "\n";
+    return 1;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "lumis compare: " << e.what() << "\n";
+    return 2;
+  } catch (const UsageError& e) {
+    std::cerr << "lumis " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "lumis compare: " << scene_path << ": " << e.what() << "\n";
+    return 1;
+  }
+  const RenderSettings base = scene->settings;
+  const bool equal_time = base.time_budget > 0;
+  const fs::path dir = args.output.empty() ? fs::path("compare-" + fs::path(scene_path).stem().string())
+                                           : fs::path(args.output);
+  auto log = [&](const std::string& line) {
+    if (!args.quiet) std::cerr << "compare: " << line << "\n";
+  };
+
+  CompareReport report;
+  report.scene = scene_path;
+  report.width = base.width;
+  report.height = base.height;
+  report.equal_time = equal_time;
+  report.spp = base.spp;
+  report.time_budget = base.time_budget;
+  report.crop = crop;
+  try {
+    fs::create_directories(dir);
+
+    // Reference: a given file, or nee_mis at many samples, cached by a hash of everything it depends on.
+    Image reference;
+    if (!args.reference.empty()) {
+      reference = read_image(args.reference, true);
+      if (reference.width != base.width || reference.height != base.height)
+        throw UsageError("compare: reference " + args.reference + " is " + std::to_string(reference.width) + "x" +
+                         std::to_string(reference.height) + " but " + scene_path + " renders at " +
+                         std::to_string(base.width) + "x" + std::to_string(base.height) +
+                         " (use --width/--height)");
+      report.reference_source = args.reference;
+    } else {
+      const uint32_t ref_spp = args.reference_spp ? *args.reference_spp : std::max(256u, 16 * base.spp);
+      const std::string hash = reference_hash(read_file_bytes(scene_path), base, ref_spp);
+      const fs::path exr = dir / "reference.exr", meta = dir / "reference.json";
+      bool cached = false;
+      if (fs::exists(exr) && fs::exists(meta)) {
+        try {
+          const nlohmann::json j = nlohmann::json::parse(read_file_bytes(meta.string()));
+          if (j.value("hash", "") == hash) {
+            reference = read_image(exr.string());
+            cached = reference.width == base.width && reference.height == base.height;
+          }
+        } catch (const std::exception&) {
+          cached = false;  // unreadable cache: render a new reference
+        }
+      }
+      if (!cached) {
+        log("rendering reference (nee_mis, " + std::to_string(ref_spp) + " spp)");
+        RenderSettings rs = base;
+        rs.integrator = "nee_mis";
+        rs.seed = reference_seed(base.seed);
+        Rendered r = render_variant(*scene, rs, ref_spp, 0);
+        reference = std::move(r.image);
+        write_image(exr.string(), reference);
+        nlohmann::json j = {{"hash", hash}, {"scene", scene_path}, {"key", reference_key(base, ref_spp)},
+                            {"seconds", r.stats.seconds}};
+        write_text(meta, j.dump(2) + "\n");
+      } else {
+        log("reusing cached reference " + exr.string());
+      }
+      report.reference_source = cached ? "cached" : "rendered";
+      report.reference_spp = ref_spp;
+      report.reference_hash = hash;
+    }
+    rgb_channels(reference, args.reference.empty() ? "reference.exr" : args.reference);
+    WriteOptions display;
+    display.exposure = base.exposure;
+    write_image((dir / report.reference_png).string(), reference, display);
+
+    // Variants.
+    std::vector<Image> images;
+    for (const std::string& name : names) {
+      RenderSettings s = base;
+      s.integrator = name;
+      Rendered r = render_variant(*scene, s, base.spp, base.time_budget);
+      VariantResult v;
+      v.name = name;
+      v.spp = r.stats.spp;
+      v.seconds = r.stats.seconds;
+      v.samples = r.stats.samples;
+      v.rays = r.stats.rays;
+      DiffOptions dopt{name, "reference"};
+      const DiffMetrics m = compute_metrics(r.image, reference, dopt);
+      v.mse = m.mse;
+      v.rel_mse = m.rel_mse;
+      v.mae = m.mae;
+      v.exr = name + ".exr";
+      v.png = name + ".png";
+      v.error_png = "error-" + name + ".png";
+      write_image((dir / v.exr).string(), r.image);
+      write_image((dir / v.png).string(), r.image, display);
+      char line[160];
+      std::snprintf(line, sizeof line, "%-8s %6u spp %8.3f s  relMSE %.4g  MSE %.4g", name.c_str(), v.spp, v.seconds,
+                    v.rel_mse, v.mse);
+      log(line);
+      if (args.convergence) {
+        // Doubling sample counts up to what the comparison used (in equal-time mode: what fitted in the budget).
+        for (uint32_t n = 1; n <= std::max(1u, v.spp); n *= 2) {
+          Rendered c = render_variant(*scene, s, n, 0);
+          const DiffMetrics cm = compute_metrics(c.image, reference, dopt);
+          v.convergence.push_back({n, c.stats.seconds, cm.mse, cm.rel_mse});
+          if (n > (1u << 30)) break;
+        }
+      }
+      images.push_back(rgb_only(r.image));
+      report.variants.push_back(std::move(v));
+    }
+    scene->settings = base;
+
+    // Error pictures on one shared scale.
+    std::vector<std::vector<float>> maps;
+    for (const Image& img : images) maps.push_back(abs_error_map(img, reference));
+    report.error_scale = shared_error_scale(maps);
+    for (size_t i = 0; i < images.size(); ++i)
+      write_image((dir / report.variants[i].error_png).string(),
+                  error_heatmap(maps[i], base.width, base.height, 0, report.error_scale,
+                                "|" + report.variants[i].name + " - REF|"));
+
+    // Montage: variants, then the reference.
+    const Image ref_rgb = rgb_only(reference);
+    std::vector<MontageTile> tiles;
+    for (size_t i = 0; i < images.size(); ++i) {
+      const VariantResult& v = report.variants[i];
+      tiles.push_back({&images[i],
+                       {v.name, std::to_string(v.spp) + " SPP " + timing(v.seconds), "RELMSE " + short_number(v.rel_mse)}});
+    }
+    tiles.push_back({&ref_rgb,
+                     {"REFERENCE", report.reference_spp ? std::to_string(report.reference_spp) + " SPP" : "FILE", ""}});
+    MontageOptions mo;
+    mo.exposure = base.exposure;
+    if (crop) mo.crop_x = crop->x, mo.crop_y = crop->y, mo.crop_w = crop->w, mo.crop_h = crop->h;
+    write_image((dir / report.montage).string(), make_montage(tiles, mo));
+
+    if (args.convergence) {
+      std::vector<PlotSeries> series;
+      for (size_t i = 0; i < report.variants.size(); ++i) {
+        PlotSeries ps{report.variants[i].name, series_colour(static_cast<int>(i)), {}};
+        for (const ConvergencePoint& p : report.variants[i].convergence) ps.points.push_back({p.seconds, p.rel_mse});
+        series.push_back(std::move(ps));
+      }
+      report.convergence_png = "convergence.png";
+      write_image((dir / report.convergence_png).string(), plot_loglog(series, "TIME (S)", "RELMSE"));
+    }
+
+    write_text(dir / "report.json", report_json(report).dump(2) + "\n");
+    write_text(dir / "report.md", report_markdown(report));
+    write_text(dir / "index.html", report_html(report));
+  } catch (const UsageError& e) {
+    std::cerr << "lumis " << e.what() << "\n";
+    return 2;
+  } catch (const DiffError& e) {
+    std::cerr << "lumis compare: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "lumis compare: " << e.what() << "\n";
+    return 1;
+  }
+  log("wrote " + (dir / "index.html").string() + ", report.md, report.json, montage.png");
+  if (!args.quiet) std::cout << report_markdown(report);
+  return 0;
+}
+
+}  // namespace
+
+void register_compare_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Render a scene with several integrators at equal spp (--spp) or equal time (--time) and compare "
+                 "them with a reference");
+  cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box)");
+  cmd->add_option("-o,--output", args->output, "Output folder (default: compare-<scene name>)");
+  cmd->add_option("--integrators", args->integrators, "Comma-separated variants to compare")->capture_default_str();
+  cmd->add_option("--reference", args->reference, "Reference image (EXR with R, G, B) instead of rendering one");
+  cmd->add_option("--reference-spp", args->reference_spp,
+                  "Samples per pixel of the rendered nee_mis reference (default: 16 x spp, at least 256)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--crop", args->crop, "x,y,w,h: add a row of zoomed crops of this region to montage.png");
+  cmd->add_flag("--convergence", args->convergence,
+                "Also render each variant at 1, 2, 4, ... spp and plot error against time (convergence.png)");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress on stderr and no table on stdout");
+  add_render_overrides(*cmd, args->overrides);
+  cmd->callback([args, &exit_code] { exit_code = run_compare(*args); });
+}
+
+}  // namespace lumis

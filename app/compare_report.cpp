@@ -1,0 +1,167 @@
+// Parsing of compare's own options, the reference cache key, and report.json / report.md.
+#include <cstdio>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/compare.h"
+#include "integrators/integrator.h"
+
+namespace lumis {
+
+namespace {
+
+std::vector<std::string> split(const std::string& text, char sep) {
+  std::vector<std::string> parts;
+  std::string cur;
+  for (char c : text) {
+    if (c == sep) {
+      parts.push_back(cur);
+      cur.clear();
+    } else if (c != ' ') {
+      cur += c;
+    }
+  }
+  parts.push_back(cur);
+  return parts;
+}
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+}  // namespace
+
+CropRect parse_crop(const std::string& text, int width, int height) {
+  const std::vector<std::string> parts = split(text, ',');
+  if (parts.size() != 4) throw std::invalid_argument("--crop: expected x,y,w,h, got '" + text + "'");
+  int v[4];
+  for (int i = 0; i < 4; ++i) {
+    size_t used = 0;
+    try {
+      v[i] = std::stoi(parts[i], &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != parts[i].size())
+      throw std::invalid_argument("--crop: '" + parts[i] + "' is not an integer (expected x,y,w,h)");
+  }
+  const CropRect c{v[0], v[1], v[2], v[3]};
+  if (c.x < 0 || c.y < 0 || c.w <= 0 || c.h <= 0 || c.x + c.w > width || c.y + c.h > height)
+    throw std::invalid_argument("--crop: " + text + " is not inside the " + std::to_string(width) + "x" +
+                                std::to_string(height) + " image");
+  return c;
+}
+
+std::vector<std::string> parse_integrator_list(const std::string& text) {
+  std::vector<std::string> names;
+  std::set<std::string> seen;
+  std::string valid;
+  for (const std::string& n : integrator_names()) valid += (valid.empty() ? "" : ", ") + n;
+  for (const std::string& n : split(text, ',')) {
+    bool known = false;
+    for (const std::string& k : integrator_names()) known |= k == n;
+    if (!known) throw std::invalid_argument("--integrators: unknown integrator '" + n + "' (valid: " + valid + ")");
+    if (!seen.insert(n).second) throw std::invalid_argument("--integrators: '" + n + "' is listed twice");
+    names.push_back(n);
+  }
+  return names;
+}
+
+std::string fnv1a_hex(const std::string& bytes) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 0x100000001b3ull;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+uint32_t reference_seed(uint32_t seed) { return seed ^ 0x9e3779b9u; }
+
+nlohmann::json reference_key(const RenderSettings& s, uint32_t reference_spp) {
+  // Everything the nee_mis reference image depends on besides the scene file (threads and time do not matter:
+  // images are identical for any thread count, and the reference has no time budget).
+  return {{"format", 1},
+          {"integrator", "nee_mis"},
+          {"spp", reference_spp},
+          {"width", s.width},
+          {"height", s.height},
+          {"max_depth", s.max_depth},
+          {"rr_depth", s.rr_depth},
+          {"sampler", sampler_type_name(s.sampler)},
+          {"seed", reference_seed(s.seed)},
+          {"light_selection", light_selection_name(s.light_selection)},
+          {"mis_heuristic", s.mis_heuristic == MisHeuristic::Power ? "power" : "balance"}};
+}
+
+std::string reference_hash(const std::string& scene_bytes, const RenderSettings& s, uint32_t reference_spp) {
+  return fnv1a_hex(scene_bytes + "\n--lumis reference key--\n" + reference_key(s, reference_spp).dump());
+}
+
+nlohmann::json report_json(const CompareReport& r) {
+  nlohmann::json j;
+  j["scene"] = r.scene;
+  j["width"] = r.width;
+  j["height"] = r.height;
+  j["mode"] = r.equal_time ? "equal-time" : "equal-spp";
+  if (r.equal_time) j["time_budget"] = r.time_budget;
+  else j["spp"] = r.spp;
+  j["reference"] = {{"source", r.reference_source}, {"png", r.reference_png}, {"spp", r.reference_spp},
+                    {"hash", r.reference_hash}};
+  j["error_scale"] = r.error_scale;
+  j["montage"] = r.montage;
+  if (r.crop) j["crop"] = {r.crop->x, r.crop->y, r.crop->w, r.crop->h};
+  if (!r.convergence_png.empty()) j["convergence_png"] = r.convergence_png;
+  j["variants"] = nlohmann::json::array();
+  for (const VariantResult& v : r.variants) {
+    nlohmann::json jv = {{"name", v.name},
+                         {"spp", v.spp},
+                         {"seconds", v.seconds},
+                         {"samples", v.samples},
+                         {"rays", v.rays},
+                         {"samples_per_second", v.samples_per_second()},
+                         {"rays_per_second", v.rays_per_second()},
+                         {"mse", v.mse},
+                         {"relmse", v.rel_mse},
+                         {"mae", v.mae},
+                         {"efficiency", v.efficiency()},
+                         {"exr", v.exr},
+                         {"png", v.png},
+                         {"error_png", v.error_png}};
+    if (!v.convergence.empty()) {
+      jv["convergence"] = nlohmann::json::array();
+      for (const ConvergencePoint& p : v.convergence)
+        jv["convergence"].push_back({{"spp", p.spp}, {"seconds", p.seconds}, {"mse", p.mse}, {"relmse", p.rel_mse}});
+    }
+    j["variants"].push_back(jv);
+  }
+  return j;
+}
+
+std::string report_markdown(const CompareReport& r) {
+  std::ostringstream md;
+  md << "# lumis compare: " << r.scene << "\n\n";
+  md << r.width << "x" << r.height << ", ";
+  if (r.equal_time) md << "equal time (" << fmt("%g", r.time_budget) << " s per variant)";
+  else md << "equal samples (" << r.spp << " spp)";
+  md << "; reference: " << r.reference_source;
+  if (r.reference_spp) md << " (nee_mis, " << r.reference_spp << " spp)";
+  md << ".\n\n";
+  md << "| variant | spp | time (s) | samples/s | rays/s | MSE | relMSE | efficiency |\n";
+  md << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const VariantResult& v : r.variants)
+    md << "| " << v.name << " | " << v.spp << " | " << fmt("%.3f", v.seconds) << " | "
+       << fmt("%.3g", v.samples_per_second()) << " | " << fmt("%.3g", v.rays_per_second()) << " | "
+       << fmt("%.4g", v.mse) << " | " << fmt("%.4g", v.rel_mse) << " | " << fmt("%.4g", v.efficiency()) << " |\n";
+  md << "\nefficiency = 1 / (relMSE x time); relMSE = mean of (x - ref)^2 / (ref^2 + 0.01) over pixels and R, G, B.\n";
+  md << "\n![montage](" << r.montage << ")\n";
+  if (!r.convergence_png.empty()) md << "\n![convergence](" << r.convergence_png << ")\n";
+  return md.str();
+}
+
+}  // namespace lumis

@@ -1,0 +1,159 @@
+// `lumis diff A B`: error metrics of A against the reference B, an optional statistical z-test and heatmap.
+// Exit codes: 0 passed (or nothing to check), 1 threshold or z-test failed, 2 error (usage, unreadable or
+// incomparable images).
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "app/cli.h"
+#include "app/diff.h"
+#include "core/image_io.h"
+
+namespace lumis {
+
+namespace {
+
+struct DiffArgs {
+  std::string a, b;
+  std::string metric = "mse";
+  std::optional<double> threshold;
+  double tolerance = 0.01;
+  std::string psnr_peak = "1";
+  std::string heatmap;
+  bool json = false;
+  bool z_test = false;
+  double alpha = 0.01;
+};
+
+nlohmann::json metrics_json(const DiffMetrics& m) {
+  return {{"width", m.width},       {"height", m.height},   {"mse", m.mse},
+          {"rmse", m.rmse},         {"relmse", m.rel_mse},  {"mae", m.mae},
+          {"psnr", m.psnr},         {"psnr_peak", m.psnr_peak}, {"maxabs", m.max_abs},
+          {"tolerance", m.tolerance}, {"over", m.over_tolerance_percent}, {"nonfinite", m.nonfinite}};
+}
+
+nlohmann::json z_json(const ZTestResult& z, double alpha) {
+  return {{"alpha", alpha},
+          {"per_test_alpha", z.per_test_alpha},
+          {"tested", z.tested},
+          {"rejected", z.rejected},
+          {"failing_fraction", z.failing_fraction()},
+          {"zero_variance", z.zero_variance},
+          {"nonfinite", z.nonfinite},
+          {"min_p", z.min_p},
+          {"worst", {{"x", z.worst_x}, {"y", z.worst_y}, {"channel", z.worst_channel}}},
+          {"used_test_variance", z.used_a_variance},
+          {"passed", z.passed}};
+}
+
+int run_diff(const DiffArgs& args) {
+  DiffOptions opt;
+  opt.name_a = args.a;
+  opt.name_b = args.b;
+  opt.tolerance = args.tolerance;
+  if (args.psnr_peak == "max") {
+    opt.psnr_peak = 0;
+  } else {
+    try {
+      size_t used = 0;
+      opt.psnr_peak = std::stod(args.psnr_peak, &used);
+      if (used != args.psnr_peak.size() || !(opt.psnr_peak > 0)) throw std::invalid_argument("");
+    } catch (const std::exception&) {
+      std::cerr << "lumis diff: --psnr-peak: expected a positive number or 'max', got '" << args.psnr_peak << "'\n";
+      return 2;
+    }
+  }
+  Image a, b;
+  DiffMetrics m;
+  std::optional<ZTestResult> z;
+  try {
+    // 8- and 16-bit files hold sRGB-encoded values: compare linear radiance, as in EXR files.
+    a = read_image(args.a, true);
+    b = read_image(args.b, true);
+    m = compute_metrics(a, b, opt);
+    if (args.z_test) z = z_test(a, b, ZTestOptions{args.alpha}, opt);
+    if (!args.heatmap.empty()) {
+      const std::vector<float> e = abs_error_map(a, b, opt);
+      float lo = INFINITY, hi = -INFINITY;
+      for (float v : e)
+        if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+      if (!(lo <= hi)) lo = hi = 0;
+      write_image(args.heatmap, error_heatmap(e, a.width, a.height, lo, hi, "MEAN |A-B| OF R,G,B"));
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "lumis diff: " << e.what() << "\n";
+    return 2;
+  }
+
+  const double value = metric_value(m, args.metric);
+  const bool threshold_ok = !args.threshold || metric_passes(args.metric, value, *args.threshold);
+  const bool passed = threshold_ok && (!z || z->passed);
+  if (args.json) {
+    nlohmann::json j = metrics_json(m);
+    j["a"] = args.a;
+    j["b"] = args.b;
+    if (args.threshold)
+      j["threshold"] = {{"metric", args.metric}, {"value", value}, {"threshold", *args.threshold},
+                        {"passed", threshold_ok}};
+    if (z) j["z_test"] = z_json(*z, args.alpha);
+    if (!args.heatmap.empty()) j["heatmap"] = args.heatmap;
+    j["passed"] = passed;
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::printf("A: %s\nB (reference): %s\n%dx%d, R G B compared\n", args.a.c_str(), args.b.c_str(), m.width,
+                m.height);
+    std::printf("  mse     %.6g\n  rmse    %.6g\n  relmse  %.6g\n  mae     %.6g\n", m.mse, m.rmse, m.rel_mse, m.mae);
+    std::printf("  psnr    %.3f dB (peak %.6g)\n  maxabs  %.6g\n", m.psnr, m.psnr_peak, m.max_abs);
+    std::printf("  over    %.4g%% of pixels have |A-B| > %g in some channel\n", m.over_tolerance_percent,
+                m.tolerance);
+    if (m.nonfinite) std::printf("  %llu pixel-channels are NaN or infinite\n",
+                                 static_cast<unsigned long long>(m.nonfinite));
+    if (z) {
+      std::printf("z-test: %llu of %llu pixel-channels rejected (%.4g%%), min p %.3g", 
+                  static_cast<unsigned long long>(z->rejected), static_cast<unsigned long long>(z->tested),
+                  100 * z->failing_fraction(), z->min_p);
+      if (z->worst_x >= 0) std::printf(" at (%d, %d) %c", z->worst_x, z->worst_y, "RGB"[z->worst_channel]);
+      std::printf(", Sidak level %.3g for alpha %g, variance of %s: %s\n", z->per_test_alpha, args.alpha,
+                  z->used_a_variance ? "A + B" : "B", z->passed ? "pass" : "FAIL");
+      if (z->zero_variance) std::printf("  %llu pixel-channels with zero variance compared to 1e-5 relative\n",
+                                        static_cast<unsigned long long>(z->zero_variance));
+    }
+    if (args.threshold)
+      std::printf("threshold: %s %.6g %s %g: %s\n", args.metric.c_str(), value, args.metric == "psnr" ? ">=" : "<=",
+                  *args.threshold, threshold_ok ? "pass" : "FAIL");
+  }
+  return passed ? 0 : 1;
+}
+
+}  // namespace
+
+void register_diff_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<DiffArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "diff", "Compare image A with reference B: error metrics, threshold check, z-test, heatmap (exit 0 pass, "
+              "1 fail, 2 error)");
+  cmd->add_option("A", args->a, "Test image")->required();
+  cmd->add_option("B", args->b, "Reference image")->required();
+  cmd->add_option("--metric", args->metric, "Metric that --threshold applies to")
+      ->check(CLI::IsMember(metric_names()))
+      ->capture_default_str();
+  cmd->add_option("--threshold", args->threshold,
+                  "Fail (exit 1) when the metric exceeds this value (psnr: when it is below)");
+  cmd->add_option("--tolerance", args->tolerance, "Absolute error per channel for the 'over' metric")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--psnr-peak", args->psnr_peak, "PSNR peak: a number, or 'max' for the reference's largest value")
+      ->capture_default_str();
+  cmd->add_option("--heatmap", args->heatmap, "Write a false-colour picture of the per-pixel error (PNG/EXR)");
+  cmd->add_flag("--json", args->json, "Print the metrics as JSON on stdout");
+  cmd->add_flag("--z-test", args->z_test,
+                "Per-pixel z-test against B's variance channels (plus A's when present); fail on any rejection");
+  cmd->add_option("--alpha", args->alpha, "Family-wise significance level of the z-test")
+      ->check(CLI::Range(1e-12, 0.5))
+      ->capture_default_str();
+  cmd->callback([args, &exit_code] { exit_code = run_diff(*args); });
+}
+
+}  // namespace lumis

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# End-to-end test of `lumis compare` on a 32x32 render of the built-in scene: the files it writes, the report
+# contents, reference caching, equal-time mode, usage errors, and (when /usr/bin/chromium exists) that index.html's
+# script runs in headless Chromium. Usage: compare.sh path/to/lumis   (exit 77 = skipped)
+set -uo pipefail
+LUMIS=${1:?usage: compare.sh path/to/lumis}
+SRC=${LUMIS_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+SCENE="$SRC/scenes/cornell-sphere.json"
+[ -f "$SCENE" ] || { echo "skip: $SCENE missing"; exit 77; }
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+expect() {
+  local want=$1; shift
+  "$@" >"$T/out" 2>"$T/err"
+  local got=$?
+  [ "$got" = "$want" ] || { cat "$T/out" "$T/err"; fail "exit $got, expected $want: $*"; }
+}
+SMALL=(--width 32 --height 32 --max-depth 2 --reference-spp 64)
+VARIANTS=(uniform bsdf light mis nee_mis)
+
+# Equal samples, all five variants, crops and convergence.
+D="$T/eq"
+expect 0 "$LUMIS" compare "$SCENE" "${SMALL[@]}" --spp 8 --crop 8,8,8,8 --convergence -o "$D"
+for f in reference.exr reference.json reference.png montage.png convergence.png report.json report.md index.html; do
+  [ -s "$D/$f" ] || fail "missing $f"
+done
+for v in "${VARIANTS[@]}"; do
+  for f in "$v.exr" "$v.png" "error-$v.png"; do [ -s "$D/$f" ] || fail "missing $f"; done
+  grep -q "^| $v | 8 |" "$D/report.md" || fail "report.md has no row for $v: $(cat "$D/report.md")"
+  grep -q "\"name\": \"$v\"" "$D/report.json" || fail "report.json lacks $v"
+done
+grep -q "| variant | spp | time (s) | samples/s | rays/s | MSE | relMSE | efficiency |" "$D/report.md" || fail "table header"
+grep -q '"convergence"' "$D/report.json" || fail "no convergence series"
+grep -q '"source": "rendered"' "$D/report.json" || fail "reference not rendered"
+grep -Eiq '(src|href)="(https?:)?//' "$D/index.html" && fail "index.html refers to an external resource"
+
+# The viewer's script runs: it marks the body ready and lists every variant plus the reference.
+CHROMIUM=/usr/bin/chromium
+if [ -x "$CHROMIUM" ]; then
+  timeout 120 "$CHROMIUM" --headless --no-sandbox --disable-gpu --disable-background-networking \
+    --disable-component-update --disable-sync --no-first-run --user-data-dir="$T/chromium-profile" \
+    --dump-dom "file://$D/index.html" >"$T/dom.html" 2>"$T/chromium.err" || fail "chromium: $(tail -5 "$T/chromium.err")"
+  grep -q 'data-ready="1"' "$T/dom.html" || fail "index.html script did not run: $(head -c 2000 "$T/dom.html")"
+  for v in "${VARIANTS[@]}" reference; do
+    grep -q "<li data-variant=\"$v\"" "$T/dom.html" || fail "viewer lacks $v"
+  done
+  echo "compare.sh: index.html checked in headless Chromium"
+else
+  echo "compare.sh: $CHROMIUM not found, index.html not run in a browser"
+fi
+# Unchanged settings reuse the cached reference; a changed setting renders a new one.
+expect 0 "$LUMIS" compare "$SCENE" "${SMALL[@]}" --spp 4 --integrators mis -o "$D" -q
+grep -q '"source": "cached"' "$D/report.json" || fail "reference not reused"
+expect 0 "$LUMIS" compare "$SCENE" "${SMALL[@]}" --spp 4 --integrators mis --seed 3 -o "$D" -q
+grep -q '"source": "rendered"' "$D/report.json" || fail "reference reused after the seed changed"
+
+# Equal time with a given reference file.
+expect 0 "$LUMIS" compare "$SCENE" --width 32 --height 32 --max-depth 2 --time 0.05 --integrators bsdf,light \
+  --reference "$D/reference.exr" -o "$T/time" -q
+grep -q '"mode": "equal-time"' "$T/time/report.json" || fail "equal-time mode"
+grep -q "\"source\": \"$D/reference.exr\"" "$T/time/report.json" || fail "given reference not recorded"
+
+# Usage errors exit 2 and name the problem.
+expect 2 "$LUMIS" compare "$SCENE" --integrators mis,photon -o "$T/bad"
+grep -q "photon" "$T/err" || fail "unknown integrator message"
+expect 2 "$LUMIS" compare "$SCENE" --width 32 --height 32 --crop 30,30,8,8 -o "$T/bad"
+expect 2 "$LUMIS" compare "$SCENE" --width 16 --height 16 --reference "$D/reference.exr" -o "$T/bad"
+grep -q "reference.exr" "$T/err" || fail "reference size message"
+
+echo "compare.sh: all checks passed"

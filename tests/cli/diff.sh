@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# End-to-end test of `lumis diff`: exit codes (0 pass, 1 fail, 2 error), JSON output, the z-test and the heatmap,
+# on tiny renders of the built-in scene. Usage: diff.sh path/to/lumis   (exit 77 = skipped)
+set -uo pipefail
+LUMIS=${1:?usage: diff.sh path/to/lumis}
+SRC=${LUMIS_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+SCENE="$SRC/scenes/cornell-sphere.json"
+[ -f "$SCENE" ] || { echo "skip: $SCENE missing"; exit 77; }
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+
+# expect CODE CMD...: run CMD (stdout to $T/out, stderr to $T/err) and check its exit status.
+expect() {
+  local want=$1; shift
+  "$@" >"$T/out" 2>"$T/err"
+  local got=$?
+  [ "$got" = "$want" ] || { cat "$T/out" "$T/err"; fail "exit $got, expected $want: $*"; }
+}
+
+R=(render "$SCENE" --width 16 --height 16 --spp 8 -q)
+expect 0 "$LUMIS" "${R[@]}" --max-depth 3 --seed 1 -o "$T/a.exr"
+expect 0 "$LUMIS" "${R[@]}" --max-depth 3 --seed 2 -o "$T/b.exr"
+expect 0 "$LUMIS" "${R[@]}" --max-depth 1 --seed 1 -o "$T/direct.exr"
+expect 0 "$LUMIS" "${R[@]}" --max-depth 3 --seed 1 -o "$T/a.png"
+expect 0 "$LUMIS" render "$SCENE" --width 8 --height 16 --spp 1 -q -o "$T/narrow.exr"
+
+# Identical images: every metric is zero and any threshold passes.
+expect 0 "$LUMIS" diff "$T/a.exr" "$T/a.exr" --threshold 0
+grep -Eq "mse +0$" "$T/out" || fail "identical images: $(cat "$T/out")"
+expect 0 "$LUMIS" diff "$T/a.exr" "$T/a.exr" --z-test
+
+# Two seeds differ: a zero threshold fails, a generous one passes; --metric picks what it applies to.
+expect 1 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --threshold 0
+expect 0 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --threshold 1e9
+expect 0 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --metric psnr --threshold -1e9
+expect 1 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --metric over --tolerance 0 --threshold 0
+
+# JSON on stdout with every metric, and the heatmap file.
+expect 0 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --json --heatmap "$T/heat.png"
+for key in '"mse"' '"rmse"' '"relmse"' '"mae"' '"psnr"' '"maxabs"' '"over"' '"passed": true'; do
+  grep -q "$key" "$T/out" || fail "--json lacks $key: $(cat "$T/out")"
+done
+[ -s "$T/heat.png" ] || fail "no heatmap written"
+
+# Direct lighting only against full paths is biased: the z-test rejects it, with a useful summary.
+expect 1 "$LUMIS" diff "$T/direct.exr" "$T/a.exr" --z-test
+grep -q "z-test:.*FAIL" "$T/out" || fail "z-test summary: $(cat "$T/out")"
+expect 1 "$LUMIS" diff "$T/direct.exr" "$T/a.exr" --z-test --json
+grep -q '"min_p"' "$T/out" || fail "z-test JSON: $(cat "$T/out")"
+
+# Errors (exit 2), each naming the files involved.
+expect 2 "$LUMIS" diff "$T/a.exr" "$T/narrow.exr"
+grep -q "a.exr" "$T/err" && grep -q "narrow.exr" "$T/err" || fail "size message: $(cat "$T/err")"
+expect 2 "$LUMIS" diff "$T/a.exr" "$T/a.png" --z-test          # a PNG has no variance channels
+grep -q "a.png" "$T/err" || fail "variance message: $(cat "$T/err")"
+expect 2 "$LUMIS" diff "$T/a.exr" "$T/missing.exr"
+grep -q "missing.exr" "$T/err" || fail "missing-file message: $(cat "$T/err")"
+expect 2 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --metric ssim
+expect 2 "$LUMIS" diff "$T/a.exr"
+expect 2 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --psnr-peak zero
+
+# A PNG (decoded from sRGB) and an EXR are comparable; PSNR can use the reference's largest value as its peak.
+expect 0 "$LUMIS" diff "$T/a.png" "$T/a.exr" --psnr-peak max
+grep -q "psnr .*(peak [0-9]" "$T/out" || fail "psnr line: $(cat "$T/out")"
+echo "diff.sh: all checks passed"
