@@ -21,6 +21,8 @@
 
 namespace lumis::lobe {
 
+inline constexpr double kLobePi = 3.14159265358979323846;
+
 /// Monotone map of [lo, hi] onto [0, 1]: CDF of (1 - weight) uniform + weight truncated Cauchy(center, width).
 struct AxisWarp {
   double lo = 0, hi = 1, center = 0, width = 1, weight = 0;
@@ -53,7 +55,7 @@ struct AxisWarp {
 /// Grid over x1 = cos(theta) in [cos_warp.lo, cos_warp.hi] and x2 = phi - phi0 in [-pi, pi].
 struct LobeBinning {
   AxisWarp cos_warp{-1, 1};
-  AxisWarp phi_warp{-M_PI, M_PI};
+  AxisWarp phi_warp{-kLobePi, kLobePi};
   double phi0 = 0;
   int cos_bins = 32, phi_bins = 64;
   int resolution = 8;  ///< Simpson intervals per cell side (even)
@@ -88,7 +90,7 @@ inline LobeHistogram lobe_histogram(const std::function<std::optional<Vec3>(Pcg3
     }
     const double len = std::sqrt(double(w->x) * w->x + double(w->y) * w->y + double(w->z) * w->z);
     double dphi = std::atan2(double(w->y), double(w->x)) - b.phi0;
-    dphi = std::remainder(dphi, 2 * M_PI);
+    dphi = std::remainder(dphi, 2 * kLobePi);
     const int i1 = cell_of(b.cos_warp.cdf(w->z / len), n1), i2 = cell_of(b.phi_warp.cdf(dphi), n2);
     h.observed[static_cast<size_t>(i1) * n2 + i2] += 1;
   }
@@ -168,7 +170,7 @@ inline LobeBinning ggx_reflection_binning(Vec3 wo, double alpha, bool hemisphere
   const double cos_o = wo.z, sin_o = std::sqrt(std::max(0.0, 1 - cos_o * cos_o));
   b.phi0 = std::atan2(-double(wo.y), -double(wo.x));
   b.cos_warp = {hemisphere ? 0.0 : -1.0, 1.0, cos_o, 2 * alpha * sin_o + 2 * alpha * alpha, weight};
-  b.phi_warp = {-M_PI, M_PI, 0.0, std::min(M_PI, 2 * alpha / std::max(sin_o, 2 * alpha)), weight};
+  b.phi_warp = {-kLobePi, kLobePi, 0.0, std::min(kLobePi, 2 * alpha / std::max(sin_o, 2 * alpha)), weight};
   return b;
 }
 
