@@ -1,0 +1,228 @@
+// glTF accessors read by hand: byteStride (interleaved views), normalized integers, sparse substitution, and bounds
+// checks on every byte range, so that a malformed file is a SceneError and never an out-of-bounds read.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "app/gltf_internal.h"
+
+namespace lumis::gltf {
+
+namespace {
+
+int component_size(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;  // DOUBLE and INT are not glTF 2.0 accessor types
+  }
+}
+
+int type_components(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT2: return 4;
+    case TINYGLTF_TYPE_MAT3: return 9;
+    case TINYGLTF_TYPE_MAT4: return 16;
+    default: return 0;
+  }
+}
+
+std::string type_name(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return "unknown type " + std::to_string(type);
+  }
+}
+
+/// One component as float; normalized integers follow glTF's max(c / (2^(n-1) - 1), -1) and c / (2^n - 1).
+float decode_component(const unsigned char* p, int ctype, bool normalized) {
+  switch (ctype) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      int8_t v; std::memcpy(&v, p, 1);
+      return normalized ? std::max(v / 127.0f, -1.0f) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+      uint8_t v; std::memcpy(&v, p, 1);
+      return normalized ? v / 255.0f : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      int16_t v; std::memcpy(&v, p, 2);
+      return normalized ? std::max(v / 32767.0f, -1.0f) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t v; std::memcpy(&v, p, 2);
+      return normalized ? v / 65535.0f : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      uint32_t v; std::memcpy(&v, p, 4);
+      return static_cast<float>(v);
+    }
+    default: {
+      float v; std::memcpy(&v, p, 4);
+      return v;
+    }
+  }
+}
+
+uint32_t decode_uint(const unsigned char* p, int ctype) {
+  switch (ctype) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return v; }
+    default: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+  }
+}
+
+/// The accessor's elements gathered into a tightly packed byte array (stride removed, sparse values applied).
+struct Packed {
+  std::vector<unsigned char> bytes;
+  size_t count = 0;
+  int components = 0, ctype = 0, elem_size = 0;
+  bool normalized = false;
+};
+
+Packed pack_accessor(const Context& ctx, int index, const std::string& where, const std::vector<int>& types) {
+  const auto& accessors = ctx.model.accessors;
+  if (index < 0 || static_cast<size_t>(index) >= accessors.size())
+    ctx.fail(where, "accessor index " + std::to_string(index) + " out of range (the file has " +
+                        std::to_string(accessors.size()) + " accessors)");
+  const tinygltf::Accessor& a = accessors[index];
+  const std::string at = indexed("accessors", index);
+  const std::string used = " (used by " + where + ")";
+
+  bool type_ok = false;
+  std::string expected;
+  for (int t : types) {
+    type_ok |= a.type == t;
+    expected += (expected.empty() ? "" : " or ") + type_name(t);
+  }
+  if (!type_ok) ctx.fail(at, "type " + type_name(a.type) + ", expected " + expected + used);
+
+  Packed p;
+  p.components = type_components(a.type);
+  p.ctype = a.componentType;
+  p.normalized = a.normalized;
+  const int csize = component_size(a.componentType);
+  if (csize == 0) ctx.fail(at, "invalid componentType " + std::to_string(a.componentType) + used);
+  if (a.normalized && a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
+    ctx.fail(at, "normalized is only allowed for integer component types");
+  p.elem_size = csize * p.components;
+  p.count = a.count;
+  // Guards the size arithmetic below; no real accessor comes near 2^32 elements.
+  if (a.count > (uint64_t(1) << 32)) ctx.fail(at, "count " + std::to_string(a.count) + " is too large");
+  p.bytes.assign(p.count * p.elem_size, 0);  // no bufferView: zeros, as the spec says
+
+  if (a.bufferView >= 0) {
+    const auto [data, size] = buffer_view_bytes(ctx, a.bufferView, at + ".bufferView");
+    const auto& view = ctx.model.bufferViews[a.bufferView];
+    const uint64_t stride = view.byteStride ? view.byteStride : p.elem_size;
+    if (stride < static_cast<uint64_t>(p.elem_size))
+      ctx.fail(at, "bufferViews[" + std::to_string(a.bufferView) + "].byteStride " + std::to_string(stride) +
+                       " is smaller than the element size " + std::to_string(p.elem_size));
+    if (p.count > 0) {
+      const uint64_t end = uint64_t(a.byteOffset) + stride * (p.count - 1) + p.elem_size;
+      if (end > size)
+        ctx.fail(at, "byteOffset " + std::to_string(a.byteOffset) + " + " + std::to_string(p.count) +
+                         " elements (stride " + std::to_string(stride) + ") need " + std::to_string(end) +
+                         " bytes, but bufferViews[" + std::to_string(a.bufferView) + "] has " +
+                         std::to_string(size) + used);
+    }
+    for (size_t i = 0; i < p.count; ++i)
+      std::memcpy(&p.bytes[i * p.elem_size], data + a.byteOffset + i * stride, p.elem_size);
+  }
+
+  if (a.sparse.isSparse) {
+    const auto& s = a.sparse;
+    if (s.count < 1 || static_cast<size_t>(s.count) > p.count)
+      ctx.fail(at + ".sparse.count", "sparse count " + std::to_string(s.count) + " must be in [1, " +
+                                         std::to_string(p.count) + "]");
+    const int isize = component_size(s.indices.componentType);
+    if (s.indices.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+        s.indices.componentType == TINYGLTF_COMPONENT_TYPE_SHORT ||
+        s.indices.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT || isize == 0)
+      ctx.fail(at + ".sparse.indices.componentType", "expected UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
+    const auto [idata, isz] = buffer_view_bytes(ctx, s.indices.bufferView, at + ".sparse.indices.bufferView");
+    const auto [vdata, vsz] = buffer_view_bytes(ctx, s.values.bufferView, at + ".sparse.values.bufferView");
+    if (s.indices.byteOffset < 0 || uint64_t(s.indices.byteOffset) + uint64_t(s.count) * isize > isz)
+      ctx.fail(at + ".sparse.indices", "byte range exceeds its bufferView");
+    if (s.values.byteOffset < 0 || uint64_t(s.values.byteOffset) + uint64_t(s.count) * p.elem_size > vsz)
+      ctx.fail(at + ".sparse.values", "byte range exceeds its bufferView");
+    for (int k = 0; k < s.count; ++k) {
+      const uint32_t target = decode_uint(idata + s.indices.byteOffset + size_t(k) * isize, s.indices.componentType);
+      if (target >= p.count)
+        ctx.fail(at + ".sparse.indices", "index " + std::to_string(target) + " >= accessor count " +
+                                             std::to_string(p.count));
+      std::memcpy(&p.bytes[size_t(target) * p.elem_size], vdata + s.values.byteOffset + size_t(k) * p.elem_size,
+                  p.elem_size);
+    }
+  }
+  return p;
+}
+
+}  // namespace
+
+std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx, int view, const std::string& where) {
+  const auto& views = ctx.model.bufferViews;
+  if (view < 0 || static_cast<size_t>(view) >= views.size())
+    ctx.fail(where, "bufferView index " + std::to_string(view) + " out of range (the file has " +
+                        std::to_string(views.size()) + " bufferViews)");
+  const tinygltf::BufferView& v = views[view];
+  const std::string at = indexed("bufferViews", view);
+  if (v.buffer < 0 || static_cast<size_t>(v.buffer) >= ctx.model.buffers.size())
+    ctx.fail(at + ".buffer", "buffer index " + std::to_string(v.buffer) + " out of range");
+  const auto& data = ctx.model.buffers[v.buffer].data;
+  if (uint64_t(v.byteOffset) + uint64_t(v.byteLength) > data.size())
+    ctx.fail(at, "byteOffset " + std::to_string(v.byteOffset) + " + byteLength " + std::to_string(v.byteLength) +
+                     " exceeds buffers[" + std::to_string(v.buffer) + "] (" + std::to_string(data.size()) +
+                     " bytes)");
+  return {data.data() + v.byteOffset, v.byteLength};
+}
+
+const FloatData& AccessorCache::floats(int index, const std::string& where, std::vector<int> types, bool finite) {
+  if (auto it = floats_.find(index); it != floats_.end()) {
+    // Cached under another use: the type must still be one this caller accepts.
+    const int t = ctx_.model.accessors[index].type;
+    if (std::find(types.begin(), types.end(), t) == types.end()) pack_accessor(ctx_, index, where, types);
+    return it->second;
+  }
+  const Packed p = pack_accessor(ctx_, index, where, types);
+  FloatData out;
+  out.components = p.components;
+  out.values.resize(p.count * p.components);
+  const int csize = p.elem_size / p.components;
+  for (size_t i = 0; i < out.values.size(); ++i) {
+    const float v = decode_component(&p.bytes[i * csize], p.ctype, p.normalized);
+    if (finite && !std::isfinite(v))
+      ctx_.fail(indexed("accessors", index), "element " + std::to_string(i / p.components) +
+                                                 " is not finite (NaN or Inf; used by " + where + ")");
+    out.values[i] = v;
+  }
+  return floats_.emplace(index, std::move(out)).first->second;
+}
+
+const std::vector<uint32_t>& AccessorCache::uints(int index, const std::string& where) {
+  if (auto it = uints_.find(index); it != uints_.end()) return it->second;
+  const Packed p = pack_accessor(ctx_, index, where, {TINYGLTF_TYPE_SCALAR});
+  if (p.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && p.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+      p.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+    ctx_.fail(indexed("accessors", index),
+              "componentType must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT (used by " + where + ")");
+  std::vector<uint32_t> out(p.count);
+  for (size_t i = 0; i < p.count; ++i) out[i] = decode_uint(&p.bytes[i * p.elem_size], p.ctype);
+  return uints_.emplace(index, std::move(out)).first->second;
+}
+
+}  // namespace lumis::gltf

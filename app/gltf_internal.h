@@ -1,0 +1,108 @@
+// Shared pieces of the glTF loader (gltf_loader.cpp, gltf_accessor.cpp, gltf_materials.cpp). Not a public API.
+#pragma once
+
+#include <tiny_gltf.h>
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/gltf_loader.h"
+#include "app/scene_error.h"
+#include "core/image.h"
+
+namespace lumis::gltf {
+
+/// What every part of the loader needs: the parsed file, where it came from, and where warnings go.
+struct Context {
+  std::string file;      ///< as given by the caller, for messages
+  std::string base_dir;  ///< folder that relative URIs resolve against
+  tinygltf::Model model;
+  std::vector<std::string>* warnings = nullptr;
+  std::set<std::string> warned;  ///< warning keys already reported (one warning per kind)
+
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw SceneError(file, where, what);
+  }
+  void warn(const std::string& text) { warnings->push_back(text); }
+  /// Report a kind of warning only the first time.
+  void warn_once(const std::string& key, const std::string& text) {
+    if (warned.insert(key).second) warn(text);
+  }
+};
+
+/// "name[i]", the way glTF paths index arrays.
+inline std::string indexed(const std::string& name, size_t i) { return name + "[" + std::to_string(i) + "]"; }
+
+// --- accessors (gltf_accessor.cpp) ---
+
+/// Float view of an accessor: `components` per element, normalized integers mapped to [0,1] / [-1,1].
+struct FloatData {
+  int components = 0;
+  std::vector<float> values;  ///< count * components
+  size_t count() const { return components ? values.size() / components : 0; }
+};
+
+/// Decoded accessors, each read and validated once however many primitives share it.
+class AccessorCache {
+ public:
+  explicit AccessorCache(Context& ctx) : ctx_(ctx) {}
+  /// Accessor `index`, referenced from `where`; its element type must be one of `types` (TINYGLTF_TYPE_*).
+  /// With `finite`, NaN or Inf values are an error.
+  const FloatData& floats(int index, const std::string& where, std::vector<int> types, bool finite = true);
+  /// Scalar unsigned-integer accessor (indices).
+  const std::vector<uint32_t>& uints(int index, const std::string& where);
+
+ private:
+  Context& ctx_;
+  std::map<int, FloatData> floats_;
+  std::map<int, std::vector<uint32_t>> uints_;
+};
+
+/// Raw bytes of a validated buffer view (offset and length inside its buffer).
+std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx, int view, const std::string& where);
+
+// --- materials and textures (gltf_materials.cpp) ---
+
+/// Path of a relative URI (percent-escapes such as %20 decoded) in the glTF file's folder.
+std::string resolve_uri(const Context& ctx, const std::string& uri);
+
+/// Convert every material of the file, in order (textures decoded once each and shared).
+std::vector<GltfMaterial> convert_materials(Context& ctx);
+
+// --- primitives (gltf_primitives.cpp) ---
+
+/// Turns (mesh, world transform) instances into world-space TriangleMeshes appended to the scene.
+class PrimitiveBuilder {
+ public:
+  PrimitiveBuilder(Context& ctx, AccessorCache& acc, GltfScene& scene) : ctx_(ctx), acc_(acc), scene_(scene) {}
+  /// Every primitive of meshes[mesh] placed by `world`; `node_at` names the node for messages.
+  void add_mesh(int mesh, const Mat4& world, const std::string& node_at);
+  /// Summary warnings (skipped primitives, dropped triangles).
+  void finish();
+
+ private:
+  /// A primitive's vertex data in its own space, decoded once however often it is instanced.
+  struct Decoded {
+    bool skip = false;
+    std::vector<Vec3> positions, normals;
+    std::vector<Vec4> tangents, colors;
+    std::vector<Vec2> uv0, uv1;
+    std::vector<uint32_t> indices;  ///< 3 per triangle, strips and fans already converted
+    int material = -1;
+  };
+  const Decoded& decode(int mesh, int prim);
+
+  Context& ctx_;
+  AccessorCache& acc_;
+  GltfScene& scene_;
+  std::map<std::pair<int, int>, Decoded> cache_;
+  int default_material_ = -1;
+  size_t skipped_non_triangles_ = 0, degenerate_ = 0;
+};
+
+}  // namespace lumis::gltf

@@ -1,0 +1,257 @@
+// glTF file parsing (through tinygltf), validation of the node hierarchy, and flattening of the default scene into
+// world-space meshes. Accessors are in gltf_accessor.cpp, materials in gltf_materials.cpp, primitives in
+// gltf_primitives.cpp.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "app/gltf_internal.h"
+
+namespace lumis {
+
+namespace fs = std::filesystem;
+using namespace gltf;
+
+namespace {
+
+/// Keep embedded images encoded until a material needs them (decoded then, from validated byte ranges); external
+/// images are read later through OpenImageIO, so tinygltf's copy of their bytes is dropped here.
+bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && image->uri.empty()) image->image.assign(bytes, bytes + size);  // data: URI
+  return true;
+}
+
+void parse_file(Context& ctx, const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) ctx.fail("", "no such file");
+  char magic[4] = {};
+  std::ifstream(path, std::ios::binary).read(magic, 4);
+  const bool binary = std::string(magic, 4) == "glTF";
+
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(&keep_image_bytes, nullptr);
+  std::string err, warn;
+  const bool ok = binary ? loader.LoadBinaryFromFile(&ctx.model, &err, &warn, path)
+                         : loader.LoadASCIIFromFile(&ctx.model, &err, &warn, path);
+  auto trim = [](std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+    return s;
+  };
+  if (!ok || !err.empty())
+    ctx.fail("", std::string(binary ? "invalid .glb: " : "invalid glTF: ") + trim(err.empty() ? warn : err));
+
+  // Missing external images: name the URI (tinygltf only warns).
+  for (size_t i = 0; i < ctx.model.images.size(); ++i) {
+    const auto& img = ctx.model.images[i];
+    if (img.bufferView >= 0 || img.uri.empty()) continue;
+    const fs::path file = resolve_uri(ctx, img.uri);
+    if (!fs::is_regular_file(file, ec))
+      ctx.fail(indexed("images", i), "image file '" + img.uri + "' not found (looked for " + file.string() + ")");
+  }
+  if (!warn.empty()) ctx.fail("", "tinygltf: " + trim(warn));
+}
+
+void check_extensions(Context& ctx) {
+  static const std::set<std::string> supported = {"KHR_texture_transform", "KHR_materials_emissive_strength",
+                                                   "EXT_mesh_gpu_instancing"};
+  for (const auto& e : ctx.model.extensionsRequired)
+    if (!supported.count(e)) ctx.fail("extensionsRequired", "required extension " + e + " is not supported");
+  std::string ignored;
+  for (const auto& e : ctx.model.extensionsUsed)
+    if (!supported.count(e)) ignored += (ignored.empty() ? "" : ", ") + e;
+  if (!ignored.empty()) ctx.warn("ignored glTF extensions: " + ignored);
+}
+
+/// Every child index in range, every node with at most one parent, and no cycles (checked without recursion).
+std::vector<int> check_hierarchy(const Context& ctx) {
+  const auto& nodes = ctx.model.nodes;
+  std::vector<int> parent(nodes.size(), -1);
+  for (size_t i = 0; i < nodes.size(); ++i)
+    for (size_t k = 0; k < nodes[i].children.size(); ++k) {
+      const int c = nodes[i].children[k];
+      const std::string at = indexed("nodes", i) + indexed(".children", k);
+      if (c < 0 || static_cast<size_t>(c) >= nodes.size())
+        ctx.fail(at, "node index " + std::to_string(c) + " out of range (the file has " +
+                         std::to_string(nodes.size()) + " nodes)");
+      if (static_cast<size_t>(c) == i) ctx.fail(at, "node is its own child (the hierarchy has a cycle)");
+      if (parent[c] >= 0)
+        ctx.fail(at, "nodes[" + std::to_string(c) + "] already has parent nodes[" + std::to_string(parent[c]) +
+                         "] (nodes must form a tree)");
+      parent[c] = static_cast<int>(i);
+    }
+  // With one parent each, a cycle is a parent chain that returns to a node still being walked.
+  std::vector<char> state(nodes.size(), 0);  // 0 unseen, 1 on the current walk, 2 reaches a root
+  for (size_t start = 0; start < nodes.size(); ++start) {
+    std::vector<int> walk;
+    int n = static_cast<int>(start);
+    while (n >= 0 && state[n] == 0) {
+      state[n] = 1;
+      walk.push_back(n);
+      n = parent[n];
+    }
+    if (n >= 0 && state[n] == 1) ctx.fail(indexed("nodes", n), "the node hierarchy has a cycle");
+    for (int w : walk) state[w] = 2;
+  }
+  return parent;
+}
+
+Mat4 local_transform(const Context& ctx, const tinygltf::Node& node, const std::string& at) {
+  Mat4 m;
+  if (!node.matrix.empty()) {
+    if (node.matrix.size() != 16) ctx.fail(at + ".matrix", "expected 16 numbers");
+    m = Mat4::from_column_major(node.matrix.data());
+  } else {
+    auto vec = [&](const std::vector<double>& v, size_t n, const char* name) {
+      if (v.size() != n) ctx.fail(at + "." + name, "expected " + std::to_string(n) + " numbers");
+      return v;
+    };
+    if (!node.translation.empty()) {
+      const auto t = vec(node.translation, 3, "translation");
+      m = m * Mat4::translate({float(t[0]), float(t[1]), float(t[2])});
+    }
+    if (!node.rotation.empty()) {
+      const auto r = vec(node.rotation, 4, "rotation");
+      m = m * Mat4::rotate_quaternion({float(r[0]), float(r[1]), float(r[2]), float(r[3])});
+    }
+    if (!node.scale.empty()) {
+      const auto s = vec(node.scale, 3, "scale");
+      m = m * Mat4::scale({float(s[0]), float(s[1]), float(s[2])});
+    }
+  }
+  if (!m.is_finite()) ctx.fail(at, "transform is not finite");
+  return m;
+}
+
+/// EXT_mesh_gpu_instancing: one matrix per instance (T R S, in the node's space), or none when absent.
+std::vector<Mat4> gpu_instances(Context& ctx, AccessorCache& acc, const tinygltf::Node& node, const std::string& at) {
+  auto it = node.extensions.find("EXT_mesh_gpu_instancing");
+  if (it == node.extensions.end()) return {};
+  const std::string eat = at + ".extensions.EXT_mesh_gpu_instancing.attributes";
+  if (!it->second.IsObject() || !it->second.Has("attributes") || !it->second.Get("attributes").IsObject())
+    ctx.fail(eat, "expected an object of accessors");
+  const tinygltf::Value& attrs = it->second.Get("attributes");
+  std::vector<Mat4> out;
+  size_t count = 0;
+  bool any = false;
+  const FloatData *t = nullptr, *r = nullptr, *s = nullptr;
+  auto get = [&](const char* name, int type) -> const FloatData* {
+    if (!attrs.Has(name)) return nullptr;
+    if (!attrs.Get(name).IsInt()) ctx.fail(eat + "." + name, "expected an accessor index");
+    const FloatData& d = acc.floats(attrs.Get(name).GetNumberAsInt(), eat + "." + name, {type});
+    if (any && d.count() != count)
+      ctx.fail(eat + "." + name, "has " + std::to_string(d.count()) + " elements, expected " +
+                                     std::to_string(count) + " like the other instance attributes");
+    count = d.count();
+    any = true;
+    return &d;
+  };
+  t = get("TRANSLATION", TINYGLTF_TYPE_VEC3);
+  r = get("ROTATION", TINYGLTF_TYPE_VEC4);
+  s = get("SCALE", TINYGLTF_TYPE_VEC3);
+  if (!any) return {};
+  for (size_t i = 0; i < count; ++i) {
+    Mat4 m;
+    if (t) m = m * Mat4::translate({t->values[3 * i], t->values[3 * i + 1], t->values[3 * i + 2]});
+    if (r) m = m * Mat4::rotate_quaternion({r->values[4 * i], r->values[4 * i + 1], r->values[4 * i + 2],
+                                            r->values[4 * i + 3]});
+    if (s) m = m * Mat4::scale({s->values[3 * i], s->values[3 * i + 1], s->values[3 * i + 2]});
+    out.push_back(m);
+  }
+  return out;
+}
+
+void set_camera(Context& ctx, GltfScene& scene, const tinygltf::Node& node, const Mat4& world, const std::string& at,
+                int& orthographic) {
+  const auto& cams = ctx.model.cameras;
+  if (node.camera < 0 || static_cast<size_t>(node.camera) >= cams.size())
+    ctx.fail(at + ".camera", "camera index " + std::to_string(node.camera) + " out of range");
+  const tinygltf::Camera& c = cams[node.camera];
+  const std::string cat = indexed("cameras", node.camera);
+  if (c.type == "orthographic") {
+    ++orthographic;
+    return;
+  }
+  if (c.type != "perspective") ctx.fail(cat + ".type", "'" + c.type + "', expected perspective or orthographic");
+  if (scene.camera) return;  // the first perspective camera wins
+  const auto& p = c.perspective;
+  if (!(p.yfov > 0 && p.yfov < kPi)) ctx.fail(cat + ".perspective.yfov", "expected an angle in (0, pi) radians");
+  if (!(p.znear >= 0) || !std::isfinite(p.znear)) ctx.fail(cat + ".perspective.znear", "expected a number >= 0");
+  Camera cam;
+  cam.from = world.apply_point({0, 0, 0});
+  cam.to = world.apply_point({0, 0, -1});
+  cam.up = normalize(world.apply_vector({0, 1, 0}));
+  // znear is in camera space: scale it like the view direction.
+  cam.near_clip = static_cast<float>(p.znear) * length(cam.to - cam.from);
+  cam.fov_y_degrees = static_cast<float>(p.yfov * 180.0 / kPi);
+  if (!is_finite(cam.from) || !is_finite(cam.to) || !is_finite(cam.up) || length(cam.to - cam.from) == 0)
+    ctx.fail(at, "camera node transform is degenerate");
+  scene.camera = cam;
+  if (p.aspectRatio > 0) scene.camera_aspect = static_cast<float>(p.aspectRatio);
+}
+
+}  // namespace
+
+GltfScene load_gltf(const std::string& path, const Mat4& transform) {
+  GltfScene scene;
+  Context ctx;
+  ctx.file = path;
+  ctx.base_dir = fs::path(path).parent_path().string();
+  ctx.warnings = &scene.warnings;
+  if (!transform.is_finite()) ctx.fail("", "the transform given to the loader is not finite");
+  parse_file(ctx, path);
+  check_extensions(ctx);
+  scene.materials = convert_materials(ctx);
+  const std::vector<int> parent = check_hierarchy(ctx);
+
+  // The default scene, else scene 0, else (no scenes at all) every root node.
+  std::vector<int> roots;
+  const auto& model = ctx.model;
+  if (model.defaultScene >= 0 || !model.scenes.empty()) {
+    const int s = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (static_cast<size_t>(s) >= model.scenes.size())
+      ctx.fail("scene", "scene index " + std::to_string(s) + " out of range");
+    roots = model.scenes[s].nodes;
+    for (size_t k = 0; k < roots.size(); ++k) {
+      const std::string at = indexed("scenes", s) + indexed(".nodes", k);
+      if (roots[k] < 0 || static_cast<size_t>(roots[k]) >= model.nodes.size())
+        ctx.fail(at, "node index " + std::to_string(roots[k]) + " out of range");
+      if (parent[roots[k]] >= 0) ctx.fail(at, "scene nodes must be roots, but this node has a parent");
+    }
+  } else {
+    for (size_t i = 0; i < model.nodes.size(); ++i)
+      if (parent[i] < 0) roots.push_back(static_cast<int>(i));
+    if (!roots.empty()) ctx.warn("the file has no scenes: showing all root nodes");
+  }
+
+  AccessorCache acc(ctx);
+  PrimitiveBuilder builder(ctx, acc, scene);
+  int orthographic = 0;
+  // Depth-first, pre-order, in file order (a tree, checked above, so the stack cannot grow without bound).
+  std::vector<std::pair<int, Mat4>> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, transform);
+  while (!stack.empty()) {
+    const auto [n, parent_world] = stack.back();
+    stack.pop_back();
+    const tinygltf::Node& node = model.nodes[n];
+    const std::string at = indexed("nodes", n);
+    const Mat4 world = parent_world * local_transform(ctx, node, at);
+    if (!world.is_finite()) ctx.fail(at, "world transform is not finite");
+    if (node.skin >= 0) ctx.warn_once("skin", "skins ignored (skinned meshes are drawn in their bind pose)");
+    if (node.camera >= 0) set_camera(ctx, scene, node, world, at, orthographic);
+    if (node.mesh >= 0) {
+      const std::vector<Mat4> instances = gpu_instances(ctx, acc, node, at);
+      if (instances.empty()) builder.add_mesh(node.mesh, world, at);
+      for (const Mat4& inst : instances) builder.add_mesh(node.mesh, world * inst, at);
+    }
+    for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.emplace_back(*c, world);
+  }
+  builder.finish();
+  if (orthographic > 0)
+    scene.warnings.push_back("orthographic cameras skipped (" + std::to_string(orthographic) + ")");
+  for (const auto& m : scene.meshes)
+    for (const Vec3& p : m.positions) scene.bounds.expand(p);
+  return scene;
+}
+
+}  // namespace lumis

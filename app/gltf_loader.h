@@ -1,0 +1,39 @@
+// glTF 2.0 (.gltf with external or data: buffers, .glb) to world-space triangle meshes, materials and a camera.
+// Errors in the file throw SceneError naming the file, a glTF path such as
+// "meshes[3].primitives[0].attributes.POSITION" or "accessors[5]", and what was expected.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/geometry.h"
+#include "core/math.h"
+#include "core/transform.h"
+#include "materials/material.h"
+
+namespace lumis {
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+struct GltfMaterial {
+  std::string name;
+  PbrParams params;
+  AlphaMode alpha_mode = AlphaMode::Opaque;  ///< Blend is rendered as Opaque (with a warning)
+  float alpha_cutoff = 0.5f;
+};
+
+struct GltfScene {
+  std::vector<TriangleMesh> meshes;     ///< world space (after `transform`); mesh.material indexes `materials`
+  std::vector<GltfMaterial> materials;  ///< the file's materials in order, plus a default one when a primitive has none
+  std::optional<Camera> camera;         ///< first perspective camera node of the default scene
+  std::optional<float> camera_aspect;   ///< the camera's aspectRatio when the file gives one
+  Bounds3 bounds;                       ///< of all mesh vertices, world space
+  std::vector<std::string> warnings;    ///< things skipped or approximated, one line each
+};
+
+/// Load the default scene (or scene 0) of a glTF file; `transform` maps glTF world space to lumis world space.
+GltfScene load_gltf(const std::string& path, const Mat4& transform = Mat4::identity());
+
+}  // namespace lumis

@@ -1,0 +1,291 @@
+// glTF materials and textures: pbrMetallicRoughness, emissive (with KHR_materials_emissive_strength), normal maps,
+// alpha modes, samplers and KHR_texture_transform. Each (image, colour space) pair is decoded once and shared.
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+#include <tbb/parallel_for.h>
+
+#include "app/gltf_internal.h"
+#include "core/image_io.h"
+
+namespace lumis::gltf {
+
+std::string resolve_uri(const Context& ctx, const std::string& uri) {
+  std::string decoded;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      decoded += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      decoded += uri[i];
+    }
+  }
+  return (std::filesystem::path(ctx.base_dir) / decoded).string();
+}
+
+namespace {
+
+/// Texture images as lumis expects them: R, G, B and optionally A (grey replicated).
+Image to_rgba(Image src) {
+  if (src.channels == 3 || src.channels == 4) {
+    src.channel_names = src.channels == 3 ? std::vector<std::string>{"R", "G", "B"}
+                                          : std::vector<std::string>{"R", "G", "B", "A"};
+    return src;
+  }
+  const bool grey = src.channels < 3;
+  const bool alpha = src.channels == 2 || src.channels > 4;
+  Image out(src.width, src.height, alpha ? std::vector<std::string>{"R", "G", "B", "A"}
+                                         : std::vector<std::string>{"R", "G", "B"});
+  for (int y = 0; y < src.height; ++y)
+    for (int x = 0; x < src.width; ++x) {
+      for (int c = 0; c < 3; ++c) out.at(x, y, c) = src.at(x, y, grey ? 0 : c);
+      if (alpha) out.at(x, y, 3) = src.at(x, y, grey ? 1 : 3);
+    }
+  return out;
+}
+
+/// Whether encoded PNG bytes carry alpha (colour type 4 or 6, or a tRNS chunk); JPEG never does.
+bool png_has_alpha(const unsigned char* p, size_t n) {
+  static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (n < 33 || std::memcmp(p, sig, 8) != 0) return false;
+  if (p[25] == 4 || p[25] == 6) return true;
+  for (size_t at = 8; at + 8 <= n;) {
+    const size_t len = (size_t(p[at]) << 24) | (size_t(p[at + 1]) << 16) | (size_t(p[at + 2]) << 8) | p[at + 3];
+    if (std::memcmp(p + at + 4, "tRNS", 4) == 0) return true;
+    if (std::memcmp(p + at + 4, "IDAT", 4) == 0) return false;
+    at += 12 + len;
+  }
+  return false;
+}
+
+class ImageCache {
+ public:
+  explicit ImageCache(Context& ctx) : ctx_(ctx) {}
+
+  /// Decode the given (image, sRGB) pairs on all cores; errors surface later, in get(), in file order.
+  void prefetch(const std::set<std::pair<int, bool>>& keys) {
+    std::vector<std::pair<int, bool>> todo;
+    for (const auto& k : keys)
+      if (k.first >= 0 && static_cast<size_t>(k.first) < ctx_.model.images.size()) todo.push_back(k);
+    std::vector<std::shared_ptr<const Image>> done(todo.size());
+    tbb::parallel_for(size_t(0), todo.size(), [&](size_t i) {
+      try {
+        done[i] = std::make_shared<const Image>(load(todo[i].first, todo[i].second));
+      } catch (const SceneError&) {
+      }
+    });
+    for (size_t i = 0; i < todo.size(); ++i)
+      if (done[i]) cache_[todo[i]] = done[i];
+  }
+
+  std::shared_ptr<const Image> get(int index, bool srgb, const std::string& where) {
+    if (index < 0 || static_cast<size_t>(index) >= ctx_.model.images.size())
+      ctx_.fail(where, "image index " + std::to_string(index) + " out of range (the file has " +
+                           std::to_string(ctx_.model.images.size()) + " images)");
+    auto& slot = cache_[{index, srgb}];
+    if (!slot) slot = std::make_shared<const Image>(load(index, srgb));
+    return slot;
+  }
+
+ private:
+  Image load(int index, bool srgb) {
+    const tinygltf::Image& img = ctx_.model.images[index];
+    const std::string at = indexed("images", index);
+    if (img.bufferView < 0 && !img.uri.empty()) {
+      const std::string path = resolve_uri(ctx_, img.uri);
+      try {
+        return to_rgba(read_image(path, srgb));
+      } catch (const ImageError& e) {
+        ctx_.fail(at, "cannot load image '" + img.uri + "': " + e.what());
+      }
+    }
+    // Embedded: a bufferView (checked here, as tinygltf does not) or a data: URI kept raw by our image callback.
+    if (img.mimeType != "image/png" && img.mimeType != "image/jpeg")
+      ctx_.fail(at + ".mimeType", "unsupported image format '" + img.mimeType + "' (expected image/png or "
+                                  "image/jpeg)");
+    const unsigned char* bytes = img.image.data();
+    size_t size = img.image.size();
+    if (img.bufferView >= 0) std::tie(bytes, size) = buffer_view_bytes(ctx_, img.bufferView, at + ".bufferView");
+    if (size == 0) ctx_.fail(at, "image has no data");
+    tinygltf::Image decoded;
+    std::string err, warn;
+    if (!tinygltf::LoadImageData(&decoded, index, &err, &warn, 0, 0, bytes, static_cast<int>(size), nullptr))
+      ctx_.fail(at, "unsupported or corrupt embedded image: " + err);
+    // tinygltf's decoder always gives RGBA (8 or 16 bits); keep alpha only where the file has it, as OIIO does.
+    const int bits = decoded.bits;
+    if (decoded.component != 4 || (bits != 8 && bits != 16) ||
+        decoded.image.size() != size_t(decoded.width) * decoded.height * 4 * (bits / 8))
+      ctx_.fail(at, "embedded image decoded to an unexpected layout");
+    const bool alpha = png_has_alpha(bytes, size);
+    Image raw(decoded.width, decoded.height, alpha ? std::vector<std::string>{"R", "G", "B", "A"}
+                                                   : std::vector<std::string>{"R", "G", "B"});
+    const size_t pixels = size_t(decoded.width) * decoded.height;
+    for (size_t i = 0; i < pixels; ++i)
+      for (int c = 0; c < raw.channels; ++c) {
+        const size_t k = 4 * i + c;
+        float v = bits == 8 ? decoded.image[k] / 255.0f
+                            : (decoded.image[2 * k] | (decoded.image[2 * k + 1] << 8)) / 65535.0f;
+        if (srgb && c < 3) v = srgb_to_linear(v);
+        raw.data[i * raw.channels + c] = v;
+      }
+    return to_rgba(std::move(raw));
+  }
+
+  Context& ctx_;
+  std::map<std::pair<int, bool>, std::shared_ptr<const Image>> cache_;
+};
+
+WrapMode wrap_mode(const Context& ctx, int v, const std::string& where) {
+  switch (v) {
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return WrapMode::Repeat;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return WrapMode::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return WrapMode::MirroredRepeat;
+    default: ctx.fail(where, "wrap mode " + std::to_string(v) + ", expected 10497, 33071 or 33648");
+  }
+}
+
+float number(const Context& ctx, const tinygltf::Value& v, const std::string& where) {
+  if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble())) ctx.fail(where, "expected a finite number");
+  return static_cast<float>(v.GetNumberAsDouble());
+}
+
+Vec2 vec2(const Context& ctx, const tinygltf::Value& v, const std::string& where) {
+  if (!v.IsArray() || v.ArrayLen() != 2) ctx.fail(where, "expected an array of 2 numbers");
+  return {number(ctx, v.Get(0), where), number(ctx, v.Get(1), where)};
+}
+
+/// A material's texture reference (index, texCoord, extensions) to a Texture; `where` is e.g.
+/// "materials[2].pbrMetallicRoughness.baseColorTexture".
+Texture make_texture(Context& ctx, ImageCache& images, int index, int tex_coord,
+                     const tinygltf::ExtensionMap& extensions, bool srgb, const std::string& where) {
+  const auto& textures = ctx.model.textures;
+  if (index < 0 || static_cast<size_t>(index) >= textures.size())
+    ctx.fail(where + ".index", "texture index " + std::to_string(index) + " out of range (the file has " +
+                                   std::to_string(textures.size()) + " textures)");
+  const tinygltf::Texture& tex = textures[index];
+  const std::string at = indexed("textures", index);
+  if (tex.source < 0)
+    ctx.fail(at, "texture has no PNG or JPEG source (only an extension's image format, which is unsupported)");
+  Texture out;
+  out.image = images.get(tex.source, srgb, at + ".source");
+  if (tex.sampler >= 0) {
+    if (static_cast<size_t>(tex.sampler) >= ctx.model.samplers.size())
+      ctx.fail(at + ".sampler", "sampler index " + std::to_string(tex.sampler) + " out of range");
+    const tinygltf::Sampler& s = ctx.model.samplers[tex.sampler];
+    const std::string sat = indexed("samplers", tex.sampler);
+    out.wrap_s = wrap_mode(ctx, s.wrapS, sat + ".wrapS");
+    out.wrap_t = wrap_mode(ctx, s.wrapT, sat + ".wrapT");
+    out.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+  }
+  out.tex_coord = tex_coord;
+  if (auto it = extensions.find("KHR_texture_transform"); it != extensions.end()) {
+    const tinygltf::Value& t = it->second;
+    const std::string tat = where + ".extensions.KHR_texture_transform";
+    if (!t.IsObject()) ctx.fail(tat, "expected an object");
+    if (t.Has("offset")) out.transform.offset = vec2(ctx, t.Get("offset"), tat + ".offset");
+    if (t.Has("rotation")) out.transform.rotation = number(ctx, t.Get("rotation"), tat + ".rotation");
+    if (t.Has("scale")) out.transform.scale = vec2(ctx, t.Get("scale"), tat + ".scale");
+    if (t.Has("texCoord")) {
+      if (!t.Get("texCoord").IsInt()) ctx.fail(tat + ".texCoord", "expected an integer");
+      out.tex_coord = t.Get("texCoord").GetNumberAsInt();
+    }
+  }
+  if (out.tex_coord < 0 || out.tex_coord > 1) {
+    ctx.warn_once("texcoord", where + ": TEXCOORD_" + std::to_string(out.tex_coord) +
+                                  " is not supported (only 0 and 1); using TEXCOORD_0");
+    out.tex_coord = 0;
+  }
+  return out;
+}
+
+Color color3(const Context& ctx, const std::vector<double>& v, const std::string& where) {
+  if (v.size() != 3) ctx.fail(where, "expected 3 numbers, got " + std::to_string(v.size()));
+  for (double x : v)
+    if (!std::isfinite(x)) ctx.fail(where, "expected finite numbers");
+  return {float(v[0]), float(v[1]), float(v[2])};
+}
+
+}  // namespace
+
+std::vector<GltfMaterial> convert_materials(Context& ctx) {
+  ImageCache images(ctx);
+  // Decoding dominates load time for textured models: find every image the materials use and decode in parallel.
+  std::set<std::pair<int, bool>> wanted;
+  auto want = [&](int texture, bool srgb) {
+    if (texture >= 0 && static_cast<size_t>(texture) < ctx.model.textures.size())
+      wanted.insert({ctx.model.textures[texture].source, srgb});
+  };
+  for (const auto& m : ctx.model.materials) {
+    want(m.pbrMetallicRoughness.baseColorTexture.index, true);
+    want(m.pbrMetallicRoughness.metallicRoughnessTexture.index, false);
+    want(m.normalTexture.index, false);
+    want(m.emissiveTexture.index, true);
+  }
+  images.prefetch(wanted);
+  std::vector<GltfMaterial> out;
+  int blend = 0;
+  for (size_t i = 0; i < ctx.model.materials.size(); ++i) {
+    const tinygltf::Material& m = ctx.model.materials[i];
+    const std::string at = indexed("materials", i);
+    const auto& pbr = m.pbrMetallicRoughness;
+    GltfMaterial g;
+    g.name = m.name.empty() ? at : m.name;
+    PbrParams& p = g.params;
+
+    if (pbr.baseColorFactor.size() != 4) ctx.fail(at + ".pbrMetallicRoughness.baseColorFactor", "expected 4 numbers");
+    const std::vector<double> rgb(pbr.baseColorFactor.begin(), pbr.baseColorFactor.begin() + 3);
+    p.base_color = color3(ctx, rgb, at + ".pbrMetallicRoughness.baseColorFactor");
+    p.base_alpha = static_cast<float>(pbr.baseColorFactor[3]);
+    p.metallic = static_cast<float>(pbr.metallicFactor);
+    p.roughness = static_cast<float>(pbr.roughnessFactor);
+    if (!std::isfinite(p.base_alpha) || !std::isfinite(p.metallic) || !std::isfinite(p.roughness))
+      ctx.fail(at + ".pbrMetallicRoughness", "factors must be finite numbers");
+    if (pbr.baseColorTexture.index >= 0)
+      p.base_color_texture = make_texture(ctx, images, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                          pbr.baseColorTexture.extensions, true,
+                                          at + ".pbrMetallicRoughness.baseColorTexture");
+    if (pbr.metallicRoughnessTexture.index >= 0)
+      p.metallic_roughness_texture = make_texture(
+          ctx, images, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+          pbr.metallicRoughnessTexture.extensions, false, at + ".pbrMetallicRoughness.metallicRoughnessTexture");
+    if (m.normalTexture.index >= 0) {
+      p.normal_texture = make_texture(ctx, images, m.normalTexture.index, m.normalTexture.texCoord,
+                                      m.normalTexture.extensions, false, at + ".normalTexture");
+      p.normal_scale = static_cast<float>(m.normalTexture.scale);
+    }
+
+    float strength = 1;
+    if (auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end()) {
+      const std::string sat = at + ".extensions.KHR_materials_emissive_strength.emissiveStrength";
+      if (it->second.IsObject() && it->second.Has("emissiveStrength"))
+        strength = number(ctx, it->second.Get("emissiveStrength"), sat);
+      if (strength < 0) ctx.fail(sat, "must be >= 0");
+    }
+    p.emissive = color3(ctx, m.emissiveFactor, at + ".emissiveFactor") * strength;
+    if (m.emissiveTexture.index >= 0)
+      p.emissive_texture = make_texture(ctx, images, m.emissiveTexture.index, m.emissiveTexture.texCoord,
+                                        m.emissiveTexture.extensions, true, at + ".emissiveTexture");
+    p.double_sided = m.doubleSided;
+
+    if (m.alphaMode == "MASK") {
+      g.alpha_mode = AlphaMode::Mask;
+    } else if (m.alphaMode == "BLEND") {
+      g.alpha_mode = AlphaMode::Blend;
+      ++blend;
+    } else if (m.alphaMode != "OPAQUE") {
+      ctx.fail(at + ".alphaMode", "'" + m.alphaMode + "', expected OPAQUE, MASK or BLEND");
+    }
+    g.alpha_cutoff = static_cast<float>(m.alphaCutoff);
+    if (!std::isfinite(g.alpha_cutoff)) ctx.fail(at + ".alphaCutoff", "expected a finite number");
+    out.push_back(std::move(g));
+  }
+  if (blend > 0)
+    ctx.warn("alphaMode BLEND rendered as OPAQUE (" + std::to_string(blend) + " material" + (blend > 1 ? "s" : "") +
+             ")");
+  return out;
+}
+
+}  // namespace lumis::gltf
