@@ -50,7 +50,7 @@ std::string suggestion(std::string_view found, const std::vector<std::string>& v
     const size_t d = edit_distance(found, v);
     if (d < best) best = d, best_name = v;
   }
-  if (best_name.empty() || best > std::max<size_t>(1, best_name.size() / 3)) return "";
+  if (best_name.empty() || best >= found.size() || best > std::max<size_t>(1, best_name.size() / 3)) return "";
   return " (did you mean \"" + best_name + "\"?)";
 }
 

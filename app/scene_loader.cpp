@@ -73,8 +73,8 @@ void parse_render(const JsonNode& node, RenderSettings& s) {
                       "mis_heuristic", "uniform_measure", "mis_light_probability", "time", "exposure"});
   if (auto v = node.find("integrator")) s.integrator = integrator_names()[v->as_choice(integrator_names(), "integrator")];
   if (auto v = node.find("spp")) s.spp = static_cast<uint32_t>(v->as_integer(1, 1 << 30));
-  if (auto v = node.find("max_depth")) s.max_depth = static_cast<int>(v->as_integer(1, 65536));
-  if (auto v = node.find("rr_depth")) s.rr_depth = static_cast<int>(v->as_integer(0, 65536));
+  if (auto v = node.find("max_depth")) s.max_depth = static_cast<int>(v->as_integer(1, 1024));
+  if (auto v = node.find("rr_depth")) s.rr_depth = static_cast<int>(v->as_integer(0, 1024));
   // The enum orders match these lists (core/sampler.h, lights/light_selection.h, integrators/scene.h).
   if (auto v = node.find("sampler"))
     s.sampler = parse_enum<SamplerType>(*v, {"independent", "stratified", "sobol"}, "sampler");

@@ -13,6 +13,7 @@
 
 #include "app/scene_error.h"
 #include "app/scene_loader.h"
+#include "core/image_io.h"
 
 namespace lumis {
 namespace {
@@ -266,6 +267,22 @@ TEST(SceneLoader, GltfEmissiveMeshesBecomeMeshLightsAndNoSkyIsAdded) {
   EXPECT_EQ(lit, scene->lights.size());
 }
 
+TEST(SceneLoader, EnvironmentMapAndTexturesLoad) {
+  Image sky(8, 4, {"R", "G", "B"});
+  for (float& v : sky.data) v = 0.5f;
+  write_image((test_dir() / "sky.exr").string(), sky);
+  const std::string png = kAssets + "/gltf/BoxWithSpaces/glTF/glTF Logo With Spaces.png";
+  const auto scene = load_scene(write_scene(
+      R"({"materials": {"t": {"type": "pbr", "base_color_texture": ")" + png + R"(", "metallic": 0},
+                        "d": {"type": "diffuse", "texture": ")" + png + R"("}},
+          "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "t"},
+                     {"type": "sphere", "center": [3,0,0], "radius": 1, "material": "d"}],
+          "lights": [{"type": "environment", "file": "sky.exr", "scale": 2, "rotation": 90}]})"));
+  EXPECT_EQ(scene->environment, 0);
+  EXPECT_TRUE(scene->lights[0]->is_environment());
+  EXPECT_EQ(scene->materials.size(), 2u);
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // Errors: syntax (line:column).
 
@@ -484,6 +501,12 @@ TEST(SceneLoaderErrors, SecondEnvironment) {
 TEST(SceneLoaderErrors, EnvironmentWithRadianceAndFile) {
   EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "radiance": [1,1,1], "file": "sky.exr"}]})", "/lights/0",
                      "exactly one of \"radiance\"");
+}
+
+TEST(SceneLoaderErrors, EnvironmentMapMustBeLinear) {
+  const std::string png = kAssets + "/gltf/BoxWithSpaces/glTF/glTF Logo With Spaces.png";
+  EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "file": ")" + png + R"("}]})", "/lights/0/file",
+                     "must be a linear .exr or .hdr file");
 }
 
 // Errors: whole files.
