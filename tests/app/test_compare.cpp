@@ -38,25 +38,26 @@ CompareReport sample_report() {
 
 }  // namespace
 
-TEST(CompareOptions, Crop) {
-  const CropRect c = parse_crop("4, 8,16,2", 32, 32);
-  EXPECT_EQ(c.x, 4);
-  EXPECT_EQ(c.y, 8);
-  EXPECT_EQ(c.w, 16);
-  EXPECT_EQ(c.h, 2);
-  EXPECT_THROW(parse_crop("1,2,3", 32, 32), std::invalid_argument);
-  EXPECT_THROW(parse_crop("1,2,3,x", 32, 32), std::invalid_argument);
-  EXPECT_THROW(parse_crop("1,2,3,4.5", 32, 32), std::invalid_argument);
-  EXPECT_THROW(parse_crop("20,0,16,16", 32, 32), std::invalid_argument);  // runs off the right edge
-  EXPECT_THROW(parse_crop("0,0,0,4", 32, 32), std::invalid_argument);
-}
-
-TEST(CompareOptions, IntegratorList) {
-  EXPECT_EQ(parse_integrator_list("mis,bsdf"), (std::vector<std::string>{"mis", "bsdf"}));
-  EXPECT_EQ(parse_integrator_list("uniform,bsdf,light,mis,nee_mis").size(), 5u);
-  EXPECT_THROW(parse_integrator_list("mis,mis"), std::invalid_argument);
-  EXPECT_THROW(parse_integrator_list("mis,photon"), std::invalid_argument);
-  EXPECT_THROW(parse_integrator_list(""), std::invalid_argument);
+TEST(CompareOptions, CropAndIntegratorList) {
+  {  // Crop
+    const CropRect c = parse_crop("4, 8,16,2", 32, 32);
+    EXPECT_EQ(c.x, 4);
+    EXPECT_EQ(c.y, 8);
+    EXPECT_EQ(c.w, 16);
+    EXPECT_EQ(c.h, 2);
+    EXPECT_THROW(parse_crop("1,2,3", 32, 32), std::invalid_argument);
+    EXPECT_THROW(parse_crop("1,2,3,x", 32, 32), std::invalid_argument);
+    EXPECT_THROW(parse_crop("1,2,3,4.5", 32, 32), std::invalid_argument);
+    EXPECT_THROW(parse_crop("20,0,16,16", 32, 32), std::invalid_argument);  // runs off the right edge
+    EXPECT_THROW(parse_crop("0,0,0,4", 32, 32), std::invalid_argument);
+  }
+  {  // IntegratorList
+    EXPECT_EQ(parse_integrator_list("mis,bsdf"), (std::vector<std::string>{"mis", "bsdf"}));
+    EXPECT_EQ(parse_integrator_list("uniform,bsdf,light,mis,nee_mis").size(), 5u);
+    EXPECT_THROW(parse_integrator_list("mis,mis"), std::invalid_argument);
+    EXPECT_THROW(parse_integrator_list("mis,photon"), std::invalid_argument);
+    EXPECT_THROW(parse_integrator_list(""), std::invalid_argument);
+  }
 }
 
 TEST(CompareReference, HashFollowsWhatChangesTheImage) {
@@ -83,66 +84,68 @@ TEST(CompareReference, HashFollowsWhatChangesTheImage) {
   EXPECT_EQ(fnv1a_hex(""), "cbf29ce484222325");  // FNV-1a 64 offset basis
 }
 
-TEST(CompareReport, JsonAndMarkdown) {
-  const CompareReport r = sample_report();
-  const nlohmann::json j = report_json(r);
-  EXPECT_EQ(j["mode"], "equal-spp");
-  ASSERT_EQ(j["variants"].size(), 2u);
-  EXPECT_DOUBLE_EQ(j["variants"][1]["efficiency"].get<double>(), 1 / (0.02 * 0.5));
-  EXPECT_DOUBLE_EQ(j["variants"][0]["samples_per_second"].get<double>(), 16 * 32 * 32 / 0.5);
-  EXPECT_EQ(j["variants"][0]["convergence"].size(), 2u);
-  const std::string md = report_markdown(r);
-  EXPECT_NE(md.find("| variant | spp | time (s) | samples/s | rays/s | MSE | relMSE | efficiency |"), std::string::npos);
-  EXPECT_NE(md.find("| nee_mis | 16 | 0.500 |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| 100 |"), std::string::npos) << md;  // efficiency of nee_mis
+TEST(CompareReport, JsonMarkdownAndSelfContainedHtml) {
+  {  // JsonAndMarkdown
+    const CompareReport r = sample_report();
+    const nlohmann::json j = report_json(r);
+    EXPECT_EQ(j["mode"], "equal-spp");
+    ASSERT_EQ(j["variants"].size(), 2u);
+    EXPECT_DOUBLE_EQ(j["variants"][1]["efficiency"].get<double>(), 1 / (0.02 * 0.5));
+    EXPECT_DOUBLE_EQ(j["variants"][0]["samples_per_second"].get<double>(), 16 * 32 * 32 / 0.5);
+    EXPECT_EQ(j["variants"][0]["convergence"].size(), 2u);
+    const std::string md = report_markdown(r);
+    EXPECT_NE(md.find("| variant | spp | time (s) | samples/s | rays/s | MSE | relMSE | efficiency |"), std::string::npos);
+    EXPECT_NE(md.find("| nee_mis | 16 | 0.500 |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| 100 |"), std::string::npos) << md;  // efficiency of nee_mis
+  }
+  {  // HtmlIsSelfContained
+    CompareReport r = sample_report();
+    r.scene = "evil</script><b>.json";
+    const std::string html = report_html(r);
+    EXPECT_EQ(html.find("http://"), std::string::npos);
+    EXPECT_EQ(html.find("https://"), std::string::npos);
+    EXPECT_EQ(html.find("</script><b>"), std::string::npos);  // escaped both in text and in the embedded JSON
+    EXPECT_NE(html.find("image-rendering: pixelated"), std::string::npos);
+    EXPECT_NE(html.find("data-ready"), std::string::npos);
+    EXPECT_NE(html.find("uniform.png"), std::string::npos);
+    EXPECT_NE(html.find("reference.png"), std::string::npos);
+  }
 }
 
-TEST(CompareReport, HtmlIsSelfContained) {
-  CompareReport r = sample_report();
-  r.scene = "evil</script><b>.json";
-  const std::string html = report_html(r);
-  EXPECT_EQ(html.find("http://"), std::string::npos);
-  EXPECT_EQ(html.find("https://"), std::string::npos);
-  EXPECT_EQ(html.find("</script><b>"), std::string::npos);  // escaped both in text and in the embedded JSON
-  EXPECT_NE(html.find("image-rendering: pixelated"), std::string::npos);
-  EXPECT_NE(html.find("data-ready"), std::string::npos);
-  EXPECT_NE(html.find("uniform.png"), std::string::npos);
-  EXPECT_NE(html.find("reference.png"), std::string::npos);
-}
-
-TEST(CompareMontage, LayoutAndCropRow) {
-  Image a = make_canvas(32, 32, Color(0.5f)), b = make_canvas(32, 32, Color(0.25f));
-  a.at(10, 12, 0) = 1.0f;
-  MontageOptions o;
-  const Image plain = make_montage({{&a, {"A", "1 SPP"}}, {&b, {"REFERENCE"}}}, o);
-  // 32-pixel images are enlarged 6x (to 192) and placed side by side with 6-pixel gaps.
-  EXPECT_EQ(plain.width, 6 + 2 * (192 + 6));
-  EXPECT_NEAR(plain.at(6 + 10 * 6 + 3, 6 + 12 * 6 + 3, 0), 1.0f, 1e-6);
-  EXPECT_NEAR(plain.at(6 + 192 + 6 + 50, 6 + 50, 0), 0.25f, 1e-6);
-  o.crop_x = 8, o.crop_y = 8, o.crop_w = 8, o.crop_h = 8;
-  const Image cropped = make_montage({{&a, {"A", "1 SPP"}}, {&b, {"REFERENCE"}}}, o);
-  EXPECT_EQ(cropped.width, plain.width);
-  EXPECT_EQ(cropped.height, plain.height + 8 * 24 + 6);  // crops fill the 192-pixel column: 24x
-  o.exposure = 1;
-  const Image brighter = make_montage({{&b, {}}}, o);
-  EXPECT_NEAR(brighter.at(6 + 100, 6 + 100, 0), 0.5f, 1e-6);
-}
-
-TEST(ComparePlot, LogLogCurvesInTheirColours) {
-  const Color c0 = series_colour(0), c1 = series_colour(1);
-  ASSERT_NE(c0, c1);
-  const Image img = plot_loglog({{"A", c0, {{0.01, 1}, {0.1, 0.1}, {1, 0.01}}}, {"B", c1, {{0.02, 0.5}, {-1, 2}}}},
-                                "TIME", "ERR", 400, 300);
-  EXPECT_EQ(img.width, 400);
-  EXPECT_EQ(img.height, 300);
-  int n0 = 0, n1 = 0;
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x) {
-      n0 += img.rgb(x, y) == c0;
-      n1 += img.rgb(x, y) == c1;
-    }
-  EXPECT_GT(n0, 200);  // a two-pixel line across most of the plot
-  EXPECT_GT(n1, 25);   // one marker (the point with x < 0 is skipped) plus its legend swatch
-  const Image empty = plot_loglog({}, "X", "Y", 200, 150);
-  EXPECT_EQ(empty.width, 200);
+TEST(ComparePictures, MontageAndLogLogPlot) {
+  {  // LayoutAndCropRow
+    Image a = make_canvas(32, 32, Color(0.5f)), b = make_canvas(32, 32, Color(0.25f));
+    a.at(10, 12, 0) = 1.0f;
+    MontageOptions o;
+    const Image plain = make_montage({{&a, {"A", "1 SPP"}}, {&b, {"REFERENCE"}}}, o);
+    // 32-pixel images are enlarged 6x (to 192) and placed side by side with 6-pixel gaps.
+    EXPECT_EQ(plain.width, 6 + 2 * (192 + 6));
+    EXPECT_NEAR(plain.at(6 + 10 * 6 + 3, 6 + 12 * 6 + 3, 0), 1.0f, 1e-6);
+    EXPECT_NEAR(plain.at(6 + 192 + 6 + 50, 6 + 50, 0), 0.25f, 1e-6);
+    o.crop_x = 8, o.crop_y = 8, o.crop_w = 8, o.crop_h = 8;
+    const Image cropped = make_montage({{&a, {"A", "1 SPP"}}, {&b, {"REFERENCE"}}}, o);
+    EXPECT_EQ(cropped.width, plain.width);
+    EXPECT_EQ(cropped.height, plain.height + 8 * 24 + 6);  // crops fill the 192-pixel column: 24x
+    o.exposure = 1;
+    const Image brighter = make_montage({{&b, {}}}, o);
+    EXPECT_NEAR(brighter.at(6 + 100, 6 + 100, 0), 0.5f, 1e-6);
+  }
+  {  // LogLogCurvesInTheirColours
+    const Color c0 = series_colour(0), c1 = series_colour(1);
+    ASSERT_NE(c0, c1);
+    const Image img = plot_loglog({{"A", c0, {{0.01, 1}, {0.1, 0.1}, {1, 0.01}}}, {"B", c1, {{0.02, 0.5}, {-1, 2}}}},
+                                  "TIME", "ERR", 400, 300);
+    EXPECT_EQ(img.width, 400);
+    EXPECT_EQ(img.height, 300);
+    int n0 = 0, n1 = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        n0 += img.rgb(x, y) == c0;
+        n1 += img.rgb(x, y) == c1;
+      }
+    EXPECT_GT(n0, 200);  // a two-pixel line across most of the plot
+    EXPECT_GT(n1, 25);   // one marker (the point with x < 0 is skipped) plus its legend swatch
+    const Image empty = plot_loglog({}, "X", "Y", 200, 150);
+    EXPECT_EQ(empty.width, 200);
+  }
 }

@@ -43,62 +43,63 @@ Image noisy_render(int w, int h, double mean, double sigma, uint64_t seed) {
 
 }  // namespace
 
-TEST(DiffMetrics, HandComputedValues) {
-  const DiffMetrics m = compute_metrics(tiny_a(), tiny_b());
-  const double mse = (0.25 + 0.04) / 6;
-  EXPECT_NEAR(m.mse, mse, 1e-7);
-  EXPECT_NEAR(m.rmse, std::sqrt(mse), 1e-7);
-  EXPECT_NEAR(m.mae, 0.7 / 6, 1e-7);
-  // (a - b)^2 / (b^2 + 0.01): 0.25 / 0.26 and 0.04 / 0.05, over six pixel-channels.
-  EXPECT_NEAR(m.rel_mse, (0.25 / 0.26 + 0.04 / 0.05) / 6, 1e-7);
-  EXPECT_NEAR(m.max_abs, 0.5, 1e-7);
-  EXPECT_NEAR(m.psnr, 10 * std::log10(1 / mse), 1e-5);
-  EXPECT_DOUBLE_EQ(m.psnr_peak, 1.0);
-  EXPECT_DOUBLE_EQ(m.over_tolerance_percent, 100.0);
-  EXPECT_EQ(m.nonfinite, 0u);
+TEST(DiffMetrics, HandComputedValuesAndOptions) {
+  {  // HandComputedValues
+    const DiffMetrics m = compute_metrics(tiny_a(), tiny_b());
+    const double mse = (0.25 + 0.04) / 6;
+    EXPECT_NEAR(m.mse, mse, 1e-7);
+    EXPECT_NEAR(m.rmse, std::sqrt(mse), 1e-7);
+    EXPECT_NEAR(m.mae, 0.7 / 6, 1e-7);
+    // (a - b)^2 / (b^2 + 0.01): 0.25 / 0.26 and 0.04 / 0.05, over six pixel-channels.
+    EXPECT_NEAR(m.rel_mse, (0.25 / 0.26 + 0.04 / 0.05) / 6, 1e-7);
+    EXPECT_NEAR(m.max_abs, 0.5, 1e-7);
+    EXPECT_NEAR(m.psnr, 10 * std::log10(1 / mse), 1e-5);
+    EXPECT_DOUBLE_EQ(m.psnr_peak, 1.0);
+    EXPECT_DOUBLE_EQ(m.over_tolerance_percent, 100.0);
+    EXPECT_EQ(m.nonfinite, 0u);
+  }
+  {  // ToleranceAndPeakOptions
+    DiffOptions o;
+    o.tolerance = 0.3;  // only pixel 0 (error 0.5) is over
+    o.psnr_peak = 0;    // the reference's largest value, 0.5
+    const DiffMetrics m = compute_metrics(tiny_a(), tiny_b(), o);
+    EXPECT_DOUBLE_EQ(m.over_tolerance_percent, 50.0);
+    EXPECT_NEAR(m.psnr_peak, 0.5, 1e-7);
+    EXPECT_NEAR(m.psnr, 10 * std::log10(0.25 / ((0.25 + 0.04) / 6)), 1e-5);
+  }
 }
 
-TEST(DiffMetrics, ToleranceAndPeakOptions) {
-  DiffOptions o;
-  o.tolerance = 0.3;  // only pixel 0 (error 0.5) is over
-  o.psnr_peak = 0;    // the reference's largest value, 0.5
-  const DiffMetrics m = compute_metrics(tiny_a(), tiny_b(), o);
-  EXPECT_DOUBLE_EQ(m.over_tolerance_percent, 50.0);
-  EXPECT_NEAR(m.psnr_peak, 0.5, 1e-7);
-  EXPECT_NEAR(m.psnr, 10 * std::log10(0.25 / ((0.25 + 0.04) / 6)), 1e-5);
-}
-
-TEST(DiffMetrics, IdenticalImagesAndThresholds) {
-  const DiffMetrics m = compute_metrics(tiny_b(), tiny_b());
-  EXPECT_EQ(m.mse, 0.0);
-  EXPECT_TRUE(std::isinf(m.psnr));
-  EXPECT_EQ(m.over_tolerance_percent, 0.0);
-  EXPECT_TRUE(metric_passes("mse", 0.01, 0.01));
-  EXPECT_FALSE(metric_passes("mse", 0.011, 0.01));
-  EXPECT_TRUE(metric_passes("psnr", 40, 30));  // higher PSNR is better
-  EXPECT_FALSE(metric_passes("psnr", 20, 30));
-  EXPECT_FALSE(metric_passes("mse", std::nan(""), 1.0));
-  const DiffMetrics t = compute_metrics(tiny_a(), tiny_b());
-  EXPECT_DOUBLE_EQ(metric_value(t, "relmse"), t.rel_mse);
-  EXPECT_DOUBLE_EQ(metric_value(t, "over"), t.over_tolerance_percent);
-  EXPECT_THROW(metric_value(t, "ssim"), std::invalid_argument);
-}
-
-TEST(DiffMetrics, NonFiniteMakesMetricsNaN) {
-  Image a = tiny_a();
-  a.data[1] = NAN;
-  const DiffMetrics m = compute_metrics(a, tiny_b());
-  EXPECT_EQ(m.nonfinite, 1u);
-  EXPECT_TRUE(std::isnan(m.mse));
-  EXPECT_FALSE(metric_passes("mse", m.mse, 1e9));
-}
-
-TEST(DiffMetrics, ChannelsFoundByNameNotPosition) {
-  Image b(2, 1, {"B", "G", "R", "A"});
-  const Image ref = tiny_b();
-  for (int x = 0; x < 2; ++x)
-    for (int k = 0; k < 3; ++k) b.at(x, 0, 2 - k) = ref.at(x, 0, k);
-  EXPECT_EQ(compute_metrics(ref, b).mse, 0.0);
+TEST(DiffMetrics, ThresholdsNonFiniteAndChannelOrder) {
+  {  // IdenticalImagesAndThresholds
+    const DiffMetrics m = compute_metrics(tiny_b(), tiny_b());
+    EXPECT_EQ(m.mse, 0.0);
+    EXPECT_TRUE(std::isinf(m.psnr));
+    EXPECT_EQ(m.over_tolerance_percent, 0.0);
+    EXPECT_TRUE(metric_passes("mse", 0.01, 0.01));
+    EXPECT_FALSE(metric_passes("mse", 0.011, 0.01));
+    EXPECT_TRUE(metric_passes("psnr", 40, 30));  // higher PSNR is better
+    EXPECT_FALSE(metric_passes("psnr", 20, 30));
+    EXPECT_FALSE(metric_passes("mse", std::nan(""), 1.0));
+    const DiffMetrics t = compute_metrics(tiny_a(), tiny_b());
+    EXPECT_DOUBLE_EQ(metric_value(t, "relmse"), t.rel_mse);
+    EXPECT_DOUBLE_EQ(metric_value(t, "over"), t.over_tolerance_percent);
+    EXPECT_THROW(metric_value(t, "ssim"), std::invalid_argument);
+  }
+  {  // NonFiniteMakesMetricsNaN
+    Image a = tiny_a();
+    a.data[1] = NAN;
+    const DiffMetrics m = compute_metrics(a, tiny_b());
+    EXPECT_EQ(m.nonfinite, 1u);
+    EXPECT_TRUE(std::isnan(m.mse));
+    EXPECT_FALSE(metric_passes("mse", m.mse, 1e9));
+  }
+  {  // ChannelsFoundByNameNotPosition
+    Image b(2, 1, {"B", "G", "R", "A"});
+    const Image ref = tiny_b();
+    for (int x = 0; x < 2; ++x)
+      for (int k = 0; k < 3; ++k) b.at(x, 0, 2 - k) = ref.at(x, 0, k);
+    EXPECT_EQ(compute_metrics(ref, b).mse, 0.0);
+  }
 }
 
 TEST(DiffMetrics, MismatchesAreErrorsNamingBothImages) {
@@ -181,42 +182,42 @@ TEST(DiffZTest, ReferenceVarianceAloneAndZeroVariance) {
   EXPECT_FALSE(z_test(a, b).passed);
 }
 
-TEST(DiffHeatmap, ErrorMapAndColourBar) {
-  const std::vector<float> e = abs_error_map(tiny_a(), tiny_b());
-  ASSERT_EQ(e.size(), 2u);
-  EXPECT_NEAR(e[0], 0.5 / 3, 1e-6);
-  EXPECT_NEAR(e[1], 0.2 / 3, 1e-6);
-  const Image h = error_heatmap(e, 2, 1, 0, 0.5 / 3);
-  // A 2x1 map is enlarged to 128 pixels wide; pixel 0 is the top of the ramp, pixel 1 is 40% up it.
-  EXPECT_GE(h.width, 128);
-  const Color top = false_colour(1), mid = false_colour(0.4f);
-  const Color p0 = h.rgb(6 + 10, 6), p1 = h.rgb(6 + 64 + 10, 6);
-  for (int k = 0; k < 3; ++k) {
-    EXPECT_NEAR(p0[k], top[k], 1e-6);
-    EXPECT_NEAR(p1[k], mid[k], 1e-6);
+TEST(DiffPictures, HeatmapRampAndFont) {
+  {  // ErrorMapAndColourBar
+    const std::vector<float> e = abs_error_map(tiny_a(), tiny_b());
+    ASSERT_EQ(e.size(), 2u);
+    EXPECT_NEAR(e[0], 0.5 / 3, 1e-6);
+    EXPECT_NEAR(e[1], 0.2 / 3, 1e-6);
+    const Image h = error_heatmap(e, 2, 1, 0, 0.5 / 3);
+    // A 2x1 map is enlarged to 128 pixels wide; pixel 0 is the top of the ramp, pixel 1 is 40% up it.
+    EXPECT_GE(h.width, 128);
+    const Color top = false_colour(1), mid = false_colour(0.4f);
+    const Color p0 = h.rgb(6 + 10, 6), p1 = h.rgb(6 + 64 + 10, 6);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(p0[k], top[k], 1e-6);
+      EXPECT_NEAR(p1[k], mid[k], 1e-6);
+    }
   }
-}
-
-TEST(DiffHeatmap, RampBrightensMonotonically) {
-  float prev = -1;
-  for (int i = 0; i <= 64; ++i) {
-    const float l = luminance(false_colour(i / 64.0f));
-    EXPECT_GT(l, prev) << "at t = " << i / 64.0;
-    prev = l;
+  {  // RampBrightensMonotonically
+    float prev = -1;
+    for (int i = 0; i <= 64; ++i) {
+      const float l = luminance(false_colour(i / 64.0f));
+      EXPECT_GT(l, prev) << "at t = " << i / 64.0;
+      prev = l;
+    }
   }
-}
-
-TEST(DiffFont, GlyphsDrawWhereExpected) {
-  Image c = make_canvas(20, 10, Color(0));
-  draw_text(c, 1, 1, "T", Color(1));
-  // 'T': full top row, then only the middle column.
-  for (int x = 0; x < 5; ++x) EXPECT_EQ(c.at(1 + x, 1, 0), 1.0f) << x;
-  EXPECT_EQ(c.at(3, 5, 0), 1.0f);
-  EXPECT_EQ(c.at(1, 5, 0), 0.0f);
-  EXPECT_EQ(text_width("ab", 1), 11);
-  EXPECT_EQ(text_width("ab", 2), 22);
-  // Lower case maps to upper case; unknown characters get the hollow box, not a blank.
-  EXPECT_EQ(glyph_rows('e')[0], glyph_rows('E')[0]);
-  EXPECT_EQ(glyph_rows('~')[0], 0x1f);
-  EXPECT_EQ(glyph_rows('~')[3], 0x11);
+  {  // GlyphsDrawWhereExpected
+    Image c = make_canvas(20, 10, Color(0));
+    draw_text(c, 1, 1, "T", Color(1));
+    // 'T': full top row, then only the middle column.
+    for (int x = 0; x < 5; ++x) EXPECT_EQ(c.at(1 + x, 1, 0), 1.0f) << x;
+    EXPECT_EQ(c.at(3, 5, 0), 1.0f);
+    EXPECT_EQ(c.at(1, 5, 0), 0.0f);
+    EXPECT_EQ(text_width("ab", 1), 11);
+    EXPECT_EQ(text_width("ab", 2), 22);
+    // Lower case maps to upper case; unknown characters get the hollow box, not a blank.
+    EXPECT_EQ(glyph_rows('e')[0], glyph_rows('E')[0]);
+    EXPECT_EQ(glyph_rows('~')[0], 0x1f);
+    EXPECT_EQ(glyph_rows('~')[3], 0x11);
+  }
 }
