@@ -84,10 +84,12 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
     const double pass_seconds = seconds_since(pass_start);
     if (options.on_progress) options.on_progress({done * pixels, spp * pixels, seconds_since(t0)});
     if (options.time_budget > 0 && seconds_since(t0) >= options.time_budget) break;
-    // Next pass: aim at ~0.5 s (and never past the time budget by more than one pass).
+    // Next pass: aim at ~0.5 s, and at a quarter of what is left of a time budget, so that a pass whose speed was
+    // over-estimated (the first one, with cold caches or warm threads) overshoots the budget by little.
     const double per_sample = pass_seconds / std::max(1u, end - begin);
     double target = 0.5;
-    if (options.time_budget > 0) target = std::min(target, std::max(0.0, options.time_budget - seconds_since(t0)));
+    if (options.time_budget > 0)
+      target = std::min(target, std::max(0.0, 0.25 * (options.time_budget - seconds_since(t0))));
     pass = static_cast<uint32_t>(std::clamp(target / std::max(per_sample, 1e-9), 1.0, 1024.0));
   }
   stats.seconds = seconds_since(t0);

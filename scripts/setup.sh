@@ -11,6 +11,7 @@ PACKAGES=(
   libtinygltf-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev
   clang libclang-rt-14-dev
+  chromium
 )
 
 missing=()

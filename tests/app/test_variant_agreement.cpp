@@ -1,0 +1,135 @@
+// All five integrator variants converge to the same image on the shipped scenes, and the efficiency claims of the
+// lecture hold on them.
+//
+// Agreement: each variant's image (low resolution, fixed seed) is compared with a high-sample nee_mis reference by
+// z-tests on region means (4x4-pixel blocks, per channel): z = (a - ref) / sqrt(var_a + var_ref), with variances
+// from the films' per-pixel variance of the mean (an over-estimate for the stratified sampler, so conservative).
+// Level: alpha = 0.01 per scene, Sidak-split over every block, channel and variant, so a correct renderer fails a
+// scene with probability below 1% at any seed; the fixed seeds make a pass reproducible.
+//
+// Efficiency (deterministic at the fixed seed, measured numbers recorded in docs/estimators.md): on veach-mis with
+// max depth 1, nee_mis has lower MSE than bsdf and than light at equal samples; on night-lights, importance light
+// selection has lower MSE than uniform selection at equal samples.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "app/scene_loader.h"
+#include "integrators/render.h"
+#include "tests/support/render_stats.h"
+
+namespace lumis {
+namespace {
+
+std::string scene_path(const char* name) { return std::string(LUMIS_SOURCE_DIR) + "/scenes/" + name; }
+
+struct Config {
+  int size = 24;
+  int max_depth = 3;
+  uint32_t spp = 128, reference_spp = 2048;
+  int block = 4;            ///< block side in pixels
+  uint32_t slow_spp = 0;    ///< spp for uniform/bsdf/light when they need more than `spp` (heavy tails)
+  bool skip_uniform = false;
+};
+
+Film render_variant(Scene& scene, const std::string& integrator, uint32_t spp, uint32_t seed) {
+  scene.settings.integrator = integrator;
+  scene.settings.seed = seed;
+  auto in = make_integrator(scene.settings);
+  Film film(scene.settings.width, scene.settings.height);
+  RenderOptions ro;
+  ro.spp = spp;
+  render(scene, *in, film, ro);
+  return film;
+}
+
+std::unique_ptr<Scene> load_small(const char* name, const Config& s) {
+  auto scene = load_scene(scene_path(name));
+  const float aspect = static_cast<float>(scene->settings.width) / static_cast<float>(scene->settings.height);
+  scene->settings.height = s.size;
+  scene->settings.width = std::max(4, static_cast<int>(std::lround(s.size * aspect)) / 4 * 4);
+  scene->settings.max_depth = s.max_depth;
+  return scene;
+}
+
+void expect_agreement(const char* name, const Config& cfg) {
+  auto scene = load_small(name, cfg);
+  const Film ref = render_variant(*scene, "nee_mis", cfg.reference_spp, 1000);
+  const int bw = cfg.block, nbx = ref.width() / bw, nby = ref.height() / bw;
+  const int n_variants = cfg.skip_uniform ? 4 : 5;
+  const double z_max = test::sidak_z(0.01, static_cast<double>(nbx) * nby * 3 * n_variants);
+  for (const char* variant : {"uniform", "bsdf", "light", "mis", "nee_mis"}) {
+    if (cfg.skip_uniform && std::string(variant) == "uniform") continue;
+    const bool slow = cfg.slow_spp && std::string(variant) != "mis" && std::string(variant) != "nee_mis";
+    const Film img = render_variant(*scene, variant, slow ? cfg.slow_spp : cfg.spp, 1);
+    int rejected = 0;
+    double worst = 0;
+    for (int by = 0; by < nby; ++by)
+      for (int bx = 0; bx < nbx; ++bx) {
+        auto in_block = [&](int x, int y) { return x / bw == bx && y / bw == by; };
+        const test::RegionMean a = test::region_mean(img, in_block), r = test::region_mean(ref, in_block);
+        for (int c = 0; c < 3; ++c) {
+          const double sd = std::sqrt(a.var[c] + r.var[c]);
+          const double diff = std::abs(a.mean[c] - r.mean[c]);
+          const double z = sd > 0 ? diff / sd : (diff > 1e-6 ? INFINITY : 0);
+          worst = std::max(worst, z);
+          if (z > z_max) ++rejected;
+        }
+      }
+    EXPECT_EQ(rejected, 0) << name << ": " << variant << " disagrees with the reference in " << rejected
+                           << " block-channels (largest z " << worst << ", limit " << z_max << ")";
+  }
+}
+
+TEST(VariantAgreement, CornellSphere) { expect_agreement("cornell-sphere.json", Config{24, 3, 256, 2048}); }
+
+// Veach's scene is built to defeat single strategies: light sampling on the near-mirror plate and BSDF sampling of
+// the tiny lights are heavy-tailed, and a z-test needs enough hits of those rare paths for the central limit
+// theorem to hold. So the single-strategy variants get more samples, and blocks are 6x6 pixels.
+// `uniform` is left out here: on the smoothest plate (alpha 0.0025) a uniform hemisphere direction lands in the
+// specular lobe with probability about 1e-6, so no affordable sample count converges (at 8192 spp its largest
+// block z was 19, its image still missing the reflections). Its unbiasedness is shown by the analytic tests and
+// by the Cornell-box agreement above.
+TEST(VariantAgreement, VeachMisDirect) {
+  Config cfg{12, 1, 512, 4096, 6, 8192};
+  cfg.skip_uniform = true;
+  expect_agreement("veach-mis.json", cfg);
+}
+
+double mse(const Film& a, const Film& b) {
+  double s = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) {
+      const Color d = a.mean(x, y) - b.mean(x, y);
+      s += dot(d, d) / 3;
+    }
+  return s / (static_cast<double>(a.width()) * a.height());
+}
+
+TEST(Efficiency, VeachMisNeeMisBeatsBsdfAndLight) {
+  auto scene = load_small("veach-mis.json", Config{32, 1});
+  const Film ref = render_variant(*scene, "nee_mis", 4096, 1000);
+  const double e_mis = mse(render_variant(*scene, "nee_mis", 16, 1), ref);
+  const double e_bsdf = mse(render_variant(*scene, "bsdf", 16, 1), ref);
+  const double e_light = mse(render_variant(*scene, "light", 16, 1), ref);
+  std::printf("veach-mis, max depth 1, 16 spp: MSE nee_mis %.4g, bsdf %.4g, light %.4g\n", e_mis, e_bsdf, e_light);
+  EXPECT_LT(e_mis, e_bsdf);
+  EXPECT_LT(e_mis, e_light);
+}
+
+TEST(Efficiency, NightLightsImportanceBeatsUniformSelection) {
+  auto scene = load_small("night-lights.json", Config{24, 1});
+  const Film ref = render_variant(*scene, "nee_mis", 2048, 1000);
+  scene->settings.light_selection = LightSelection::Uniform;
+  scene->update_light_selector();
+  const double e_uniform = mse(render_variant(*scene, "nee_mis", 16, 1), ref);
+  scene->settings.light_selection = LightSelection::Importance;
+  scene->update_light_selector();
+  const double e_importance = mse(render_variant(*scene, "nee_mis", 16, 1), ref);
+  std::printf("night-lights, max depth 1, 16 spp: MSE importance %.4g, uniform %.4g\n", e_importance, e_uniform);
+  EXPECT_LT(e_importance, e_uniform);
+}
+
+}  // namespace
+}  // namespace lumis
