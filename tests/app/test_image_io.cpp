@@ -25,6 +25,11 @@ class ImageIoTest : public ::testing::Test {
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
+  /// Empty the folder again (each block of a test starts from nothing).
+  void reset() {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
   /// Nothing but the named file in the folder (no temporary left behind).
   std::vector<std::string> listing() const {
@@ -60,159 +65,168 @@ TEST(SrgbCurve, KnownValuesAndInverse) {
   EXPECT_NEAR(linear_to_srgb(0.0031308f), linear_to_srgb(0.0031309f), 1e-5f);
 }
 
-TEST_F(ImageIoTest, ExrRoundTripIsExactWithAllChannels) {
-  const Image img = gradient(7, 5, {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "depth"});
-  const std::string path = file("aov.exr");
-  write_image(path, img);
-  const Image back = read_image(path);
-  ASSERT_EQ(back.width, 7);
-  ASSERT_EQ(back.height, 5);
-  ASSERT_EQ(back.channels, 7);
-  for (const auto& name : img.channel_names) EXPECT_GE(back.channel_index(name), 0) << name;
-  // OpenEXR may reorder channels alphabetically within layers: compare by name.
-  for (int c = 0; c < img.channels; ++c) {
-    const int bc = back.channel_index(img.channel_names[c]);
-    for (int y = 0; y < 5; ++y)
-      for (int x = 0; x < 7; ++x) EXPECT_EQ(back.at(x, y, bc), img.at(x, y, c));
+// One test case per group: every process start loads OpenImageIO (~0.5 s).
+TEST_F(ImageIoTest, RoundTrips) {
+  {  // ExrRoundTripIsExactWithAllChannels
+    reset();
+    const Image img = gradient(7, 5, {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "depth"});
+    const std::string path = file("aov.exr");
+    write_image(path, img);
+    const Image back = read_image(path);
+    ASSERT_EQ(back.width, 7);
+    ASSERT_EQ(back.height, 5);
+    ASSERT_EQ(back.channels, 7);
+    for (const auto& name : img.channel_names) EXPECT_GE(back.channel_index(name), 0) << name;
+    // OpenEXR may reorder channels alphabetically within layers: compare by name.
+    for (int c = 0; c < img.channels; ++c) {
+      const int bc = back.channel_index(img.channel_names[c]);
+      for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 7; ++x) EXPECT_EQ(back.at(x, y, bc), img.at(x, y, c));
+    }
+    EXPECT_EQ(listing(), std::vector<std::string>{"aov.exr"});
   }
-  EXPECT_EQ(listing(), std::vector<std::string>{"aov.exr"});
-}
-
-TEST_F(ImageIoTest, PngRoundTripWithinQuantisation) {
-  Image img(16, 4, {"R", "G", "B", "extra"});
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 16; ++x)
-      for (int c = 0; c < 4; ++c) img.at(x, y, c) = (x * 4 + y + c) / 70.0f;
-  img.at(0, 0, 0) = 3.0f;   // clamps to 1
-  img.at(1, 0, 0) = -1.0f;  // clamps to 0
-  const std::string path = file("out.png");
-  write_image(path, img);
-  const Image raw = read_image(path);  // encoded values
-  ASSERT_EQ(raw.channels, 3);          // only the first three channels are written
-  EXPECT_EQ(raw.at(0, 0, 0), 1.0f);
-  EXPECT_EQ(raw.at(1, 0, 0), 0.0f);
-  const Image lin = read_image(path, true);
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 16; ++x)
-      for (int c = 0; c < 3; ++c) {
-        if (y == 0 && x < 2 && c == 0) continue;
-        // Half a code value in the encoded domain.
-        EXPECT_NEAR(raw.at(x, y, c), linear_to_srgb(img.at(x, y, c)), 0.5f / 255 + 1e-6f);
-        const float v = img.at(x, y, c);
-        const float tol = srgb_to_linear(std::min(1.0f, linear_to_srgb(v) + 0.5f / 255)) - v + 1e-6f;
-        EXPECT_NEAR(lin.at(x, y, c), v, tol);
-      }
-}
-
-TEST_F(ImageIoTest, PngExposureInStops) {
-  Image img(1, 1, {"R", "G", "B"});
-  img.at(0, 0, 0) = 0.05f;
-  img.at(0, 0, 1) = 0.1f;
-  img.at(0, 0, 2) = 0.2f;
-  const std::string path = file("exposed.png");
-  write_image(path, img, WriteOptions{2.0f});  // x4
-  const Image back = read_image(path, true);
-  EXPECT_NEAR(back.at(0, 0, 0), 0.2f, 0.003f);
-  EXPECT_NEAR(back.at(0, 0, 1), 0.4f, 0.004f);
-  EXPECT_NEAR(back.at(0, 0, 2), 0.8f, 0.006f);
-}
-
-TEST_F(ImageIoTest, SrgbDecodeLeavesAlphaAlone) {
-  Image img(2, 1, {"R", "G", "B", "A"});
-  img.at(0, 0, 0) = 0.5f; img.at(0, 0, 3) = 0.5f;
-  const std::string path = file("rgba.exr");
-  write_image(path, img);
-  // Float files are linear: the flag changes nothing.
-  EXPECT_EQ(read_image(path, true).at(0, 0, 0), 0.5f);
-
-  // An 8-bit RGBA PNG (write_image writes only RGB), made with OIIO directly: colour 128, alpha 128.
-  const std::string png_path = file("rgba.png");
-  {
-    const unsigned char px[4] = {128, 128, 128, 128};
-    auto out = OIIO::ImageOutput::create(png_path);
-    ASSERT_TRUE(out);
-    OIIO::ImageSpec spec(1, 1, 4, OIIO::TypeDesc::UINT8);
-    spec.alpha_channel = 3;
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    ASSERT_TRUE(out->open(png_path, spec));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px));
-    out->close();
+  {  // PngRoundTripWithinQuantisation
+    reset();
+    Image img(16, 4, {"R", "G", "B", "extra"});
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 16; ++x)
+        for (int c = 0; c < 4; ++c) img.at(x, y, c) = (x * 4 + y + c) / 70.0f;
+    img.at(0, 0, 0) = 3.0f;   // clamps to 1
+    img.at(1, 0, 0) = -1.0f;  // clamps to 0
+    const std::string path = file("out.png");
+    write_image(path, img);
+    const Image raw = read_image(path);  // encoded values
+    ASSERT_EQ(raw.channels, 3);          // only the first three channels are written
+    EXPECT_EQ(raw.at(0, 0, 0), 1.0f);
+    EXPECT_EQ(raw.at(1, 0, 0), 0.0f);
+    const Image lin = read_image(path, true);
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 16; ++x)
+        for (int c = 0; c < 3; ++c) {
+          if (y == 0 && x < 2 && c == 0) continue;
+          // Half a code value in the encoded domain.
+          EXPECT_NEAR(raw.at(x, y, c), linear_to_srgb(img.at(x, y, c)), 0.5f / 255 + 1e-6f);
+          const float v = img.at(x, y, c);
+          const float tol = srgb_to_linear(std::min(1.0f, linear_to_srgb(v) + 0.5f / 255)) - v + 1e-6f;
+          EXPECT_NEAR(lin.at(x, y, c), v, tol);
+        }
   }
-  const Image raw = read_image(png_path);
-  ASSERT_EQ(raw.channels, 4);
-  EXPECT_NEAR(raw.at(0, 0, 0), 128 / 255.0f, 1e-6f);  // straight alpha: colour not premultiplied
-  EXPECT_NEAR(raw.at(0, 0, 3), 128 / 255.0f, 1e-6f);
-  const Image lin = read_image(png_path, true);
-  EXPECT_NEAR(lin.at(0, 0, 0), srgb_to_linear(128 / 255.0f), 1e-6f);
-  EXPECT_NEAR(lin.at(0, 0, 3), 128 / 255.0f, 1e-6f);  // alpha is never decoded
-}
-
-TEST_F(ImageIoTest, HdrKeepsRadianceAboveOne) {
-  Image img(3, 2, {"R", "G", "B"});
-  img.at(2, 1, 0) = 12.5f;
-  img.at(2, 1, 1) = 0.25f;
-  img.at(2, 1, 2) = 1.0f;
-  const std::string path = file("env.hdr");
-  write_image(path, img);
-  const Image back = read_image(path);
-  ASSERT_EQ(back.channels, 3);
-  EXPECT_NEAR(back.at(2, 1, 0), 12.5f, 12.5f / 128);  // RGBE: 8-bit mantissa shared by the pixel
-  EXPECT_NEAR(back.at(2, 1, 1), 0.25f, 12.5f / 128);
-}
-
-TEST_F(ImageIoTest, JpgWrites) {
-  const Image img = gradient(8, 8, {"R", "G", "B"});
-  write_image(file("a.jpg"), img);
-  EXPECT_EQ(read_image(file("a.jpg")).width, 8);
-  EXPECT_EQ(listing(), std::vector<std::string>{"a.jpg"});
-}
-
-TEST_F(ImageIoTest, UnknownExtensionIsAnErrorAndWritesNothing) {
-  const Image img = gradient(2, 2, {"R", "G", "B"});
-  try {
-    write_image(file("out.bmpx"), img);
-    FAIL() << "expected ImageError";
-  } catch (const ImageError& e) {
-    EXPECT_NE(std::string(e.what()).find(file("out.bmpx") + ": "), std::string::npos) << e.what();
+  {  // PngExposureInStops
+    reset();
+    Image img(1, 1, {"R", "G", "B"});
+    img.at(0, 0, 0) = 0.05f;
+    img.at(0, 0, 1) = 0.1f;
+    img.at(0, 0, 2) = 0.2f;
+    const std::string path = file("exposed.png");
+    write_image(path, img, WriteOptions{2.0f});  // x4
+    const Image back = read_image(path, true);
+    EXPECT_NEAR(back.at(0, 0, 0), 0.2f, 0.003f);
+    EXPECT_NEAR(back.at(0, 0, 1), 0.4f, 0.004f);
+    EXPECT_NEAR(back.at(0, 0, 2), 0.8f, 0.006f);
   }
-  EXPECT_TRUE(listing().empty());
-}
+  {  // SrgbDecodeLeavesAlphaAlone
+    reset();
+    Image img(2, 1, {"R", "G", "B", "A"});
+    img.at(0, 0, 0) = 0.5f; img.at(0, 0, 3) = 0.5f;
+    const std::string path = file("rgba.exr");
+    write_image(path, img);
+    // Float files are linear: the flag changes nothing.
+    EXPECT_EQ(read_image(path, true).at(0, 0, 0), 0.5f);
 
-TEST_F(ImageIoTest, FailedWriteLeavesNoTemporary) {
-  const Image img = gradient(2, 2, {"R", "G", "B"});
-  // The destination is an existing non-empty folder: the rename must fail after the temporary was written.
-  fs::create_directories(dir_ / "taken.png" / "inside");
-  EXPECT_THROW(write_image(file("taken.png"), img), ImageError);
-  EXPECT_EQ(listing(), std::vector<std::string>{"taken.png"});
-  // A missing folder fails at open.
-  EXPECT_THROW(write_image(file("nofolder/x.exr"), img), ImageError);
-  EXPECT_EQ(listing(), std::vector<std::string>{"taken.png"});
-}
-
-TEST_F(ImageIoTest, OverwriteReplacesAtomically) {
-  write_image(file("x.exr"), gradient(2, 2, {"R", "G", "B"}));
-  write_image(file("x.exr"), gradient(4, 3, {"R", "G", "B"}));
-  EXPECT_EQ(read_image(file("x.exr")).width, 4);
-  EXPECT_EQ(listing(), std::vector<std::string>{"x.exr"});
-}
-
-TEST_F(ImageIoTest, ReadErrorsNameTheFile) {
-  const std::string missing = file("missing.png");
-  try {
-    read_image(missing);
-    FAIL() << "expected ImageError";
-  } catch (const ImageError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind(missing + ": ", 0), 0u) << e.what();
+    // An 8-bit RGBA PNG (write_image writes only RGB), made with OIIO directly: colour 128, alpha 128.
+    const std::string png_path = file("rgba.png");
+    {
+      const unsigned char px[4] = {128, 128, 128, 128};
+      auto out = OIIO::ImageOutput::create(png_path);
+      ASSERT_TRUE(out);
+      OIIO::ImageSpec spec(1, 1, 4, OIIO::TypeDesc::UINT8);
+      spec.alpha_channel = 3;
+      spec.attribute("oiio:UnassociatedAlpha", 1);
+      ASSERT_TRUE(out->open(png_path, spec));
+      ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px));
+      out->close();
+    }
+    const Image raw = read_image(png_path);
+    ASSERT_EQ(raw.channels, 4);
+    EXPECT_NEAR(raw.at(0, 0, 0), 128 / 255.0f, 1e-6f);  // straight alpha: colour not premultiplied
+    EXPECT_NEAR(raw.at(0, 0, 3), 128 / 255.0f, 1e-6f);
+    const Image lin = read_image(png_path, true);
+    EXPECT_NEAR(lin.at(0, 0, 0), srgb_to_linear(128 / 255.0f), 1e-6f);
+    EXPECT_NEAR(lin.at(0, 0, 3), 128 / 255.0f, 1e-6f);  // alpha is never decoded
   }
-  const std::string junk = file("junk.png");
-  std::ofstream(junk) << "this is not a png";
-  try {
-    read_image(junk);
-    FAIL() << "expected ImageError";
-  } catch (const ImageError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind(junk + ": ", 0), 0u) << e.what();
+  {  // HdrKeepsRadianceAboveOne
+    reset();
+    Image img(3, 2, {"R", "G", "B"});
+    img.at(2, 1, 0) = 12.5f;
+    img.at(2, 1, 1) = 0.25f;
+    img.at(2, 1, 2) = 1.0f;
+    const std::string path = file("env.hdr");
+    write_image(path, img);
+    const Image back = read_image(path);
+    ASSERT_EQ(back.channels, 3);
+    EXPECT_NEAR(back.at(2, 1, 0), 12.5f, 12.5f / 128);  // RGBE: 8-bit mantissa shared by the pixel
+    EXPECT_NEAR(back.at(2, 1, 1), 0.25f, 12.5f / 128);
   }
-  const std::string unknown = file("data.xyz");
-  std::ofstream(unknown) << "plain text";
-  EXPECT_THROW(read_image(unknown), ImageError);
+  {  // JpgWrites
+    reset();
+    const Image img = gradient(8, 8, {"R", "G", "B"});
+    write_image(file("a.jpg"), img);
+    EXPECT_EQ(read_image(file("a.jpg")).width, 8);
+    EXPECT_EQ(listing(), std::vector<std::string>{"a.jpg"});
+  }
 }
+
+// Failures name the file and leave no temporary behind.
+TEST_F(ImageIoTest, ErrorsAndAtomicWrites) {
+  {  // UnknownExtensionIsAnErrorAndWritesNothing
+    reset();
+    const Image img = gradient(2, 2, {"R", "G", "B"});
+    try {
+      write_image(file("out.bmpx"), img);
+      FAIL() << "expected ImageError";
+    } catch (const ImageError& e) {
+      EXPECT_NE(std::string(e.what()).find(file("out.bmpx") + ": "), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(listing().empty());
+  }
+  {  // FailedWriteLeavesNoTemporary
+    reset();
+    const Image img = gradient(2, 2, {"R", "G", "B"});
+    // The destination is an existing non-empty folder: the rename must fail after the temporary was written.
+    fs::create_directories(dir_ / "taken.png" / "inside");
+    EXPECT_THROW(write_image(file("taken.png"), img), ImageError);
+    EXPECT_EQ(listing(), std::vector<std::string>{"taken.png"});
+    // A missing folder fails at open.
+    EXPECT_THROW(write_image(file("nofolder/x.exr"), img), ImageError);
+    EXPECT_EQ(listing(), std::vector<std::string>{"taken.png"});
+  }
+  {  // OverwriteReplacesAtomically
+    reset();
+    write_image(file("x.exr"), gradient(2, 2, {"R", "G", "B"}));
+    write_image(file("x.exr"), gradient(4, 3, {"R", "G", "B"}));
+    EXPECT_EQ(read_image(file("x.exr")).width, 4);
+    EXPECT_EQ(listing(), std::vector<std::string>{"x.exr"});
+  }
+  {  // ReadErrorsNameTheFile
+    reset();
+    const std::string missing = file("missing.png");
+    try {
+      read_image(missing);
+      FAIL() << "expected ImageError";
+    } catch (const ImageError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(missing + ": ", 0), 0u) << e.what();
+    }
+    const std::string junk = file("junk.png");
+    std::ofstream(junk) << "this is not a png";
+    try {
+      read_image(junk);
+      FAIL() << "expected ImageError";
+    } catch (const ImageError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(junk + ": ", 0), 0u) << e.what();
+    }
+    const std::string unknown = file("data.xyz");
+    std::ofstream(unknown) << "plain text";
+    EXPECT_THROW(read_image(unknown), ImageError);
+  }
+}
+
