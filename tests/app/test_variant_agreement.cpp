@@ -97,12 +97,14 @@ TEST(VariantAgreement, VeachMisDirect) {
   expect_agreement("veach-mis.json", cfg);
 }
 
+// Relative MSE, (a - ref)^2 / (ref^2 + 0.01) averaged over pixels and channels (as `lumis compare` reports): plain
+// MSE would be dominated by the anti-aliased edges of directly visible lights, which every strategy shares.
 double mse(const Film& a, const Film& b) {
   double s = 0;
   for (int y = 0; y < a.height(); ++y)
     for (int x = 0; x < a.width(); ++x) {
-      const Color d = a.mean(x, y) - b.mean(x, y);
-      s += dot(d, d) / 3;
+      const Color d = a.mean(x, y) - b.mean(x, y), r = b.mean(x, y);
+      for (int c = 0; c < 3; ++c) s += d[c] * d[c] / (r[c] * r[c] + 0.01) / 3;
     }
   return s / (static_cast<double>(a.width()) * a.height());
 }
@@ -113,21 +115,23 @@ TEST(Efficiency, VeachMisNeeMisBeatsBsdfAndLight) {
   const double e_mis = mse(render_variant(*scene, "nee_mis", 16, 1), ref);
   const double e_bsdf = mse(render_variant(*scene, "bsdf", 16, 1), ref);
   const double e_light = mse(render_variant(*scene, "light", 16, 1), ref);
-  std::printf("veach-mis, max depth 1, 16 spp: MSE nee_mis %.4g, bsdf %.4g, light %.4g\n", e_mis, e_bsdf, e_light);
+  std::printf("veach-mis, max depth 1, 16 spp: relMSE nee_mis %.4g, bsdf %.4g, light %.4g\n", e_mis, e_bsdf, e_light);
   EXPECT_LT(e_mis, e_bsdf);
   EXPECT_LT(e_mis, e_light);
 }
 
 TEST(Efficiency, NightLightsImportanceBeatsUniformSelection) {
-  auto scene = load_small("night-lights.json", Config{24, 1});
-  const Film ref = render_variant(*scene, "nee_mis", 2048, 1000);
+  // 64x48: at 32x24 a handful of pixels decide the comparison (measured at seeds 1-3 and 64x48: importance
+  // relMSE 0.052-0.072, uniform 0.149-0.159, power 0.159-0.175).
+  auto scene = load_small("night-lights.json", Config{48, 1});
+  const Film ref = render_variant(*scene, "nee_mis", 1024, 1000);
   scene->settings.light_selection = LightSelection::Uniform;
   scene->update_light_selector();
   const double e_uniform = mse(render_variant(*scene, "nee_mis", 16, 1), ref);
   scene->settings.light_selection = LightSelection::Importance;
   scene->update_light_selector();
   const double e_importance = mse(render_variant(*scene, "nee_mis", 16, 1), ref);
-  std::printf("night-lights, max depth 1, 16 spp: MSE importance %.4g, uniform %.4g\n", e_importance, e_uniform);
+  std::printf("night-lights, max depth 1, 16 spp: relMSE importance %.4g, uniform %.4g\n", e_importance, e_uniform);
   EXPECT_LT(e_importance, e_uniform);
 }
 
