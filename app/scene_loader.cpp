@@ -121,7 +121,9 @@ std::unique_ptr<Scene> load_json_scene(const std::string& path) {
   return scene;
 }
 
-// A bare glTF file: its first camera (or a framing one), and a white sky when nothing in it emits.
+// A bare glTF file: its first camera (or a framing one), and a white sky unless it has a light source: an emissive
+// material without an emissive texture (a lamp). Textured emission is usually a decal (a helmet's visor display),
+// too weak to light a model on its own, so such files get the sky too.
 std::unique_ptr<Scene> load_gltf_scene(const std::string& path) {
   auto scene = std::make_unique<Scene>();
   scene->source = path;
@@ -140,9 +142,14 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path) {
                                         kMaxResolution);
   }
   JsonSceneBuilder builder(*scene, path);
-  const bool emits = builder.add_gltf(gltf, std::vector<int>(gltf.materials.size(), -1),
-                                      TriangleSampling::SphericalTriangle);
-  if (!emits) {
+  bool has_lamp = false;
+  for (const TriangleMesh& m : gltf.meshes) {
+    if (m.material < 0 || m.material >= static_cast<int>(gltf.materials.size())) continue;
+    const PbrParams& p = gltf.materials[m.material].params;
+    has_lamp |= !is_black(p.emissive) && !p.emissive_texture;
+  }
+  builder.add_gltf(gltf, std::vector<int>(gltf.materials.size(), -1), TriangleSampling::SphericalTriangle);
+  if (!has_lamp) {
     scene->environment = static_cast<int>(scene->lights.size());
     scene->lights.push_back(make_constant_environment(Color(1.0f)));
   }
