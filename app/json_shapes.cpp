@@ -68,7 +68,7 @@ void JsonSceneBuilder::add_sphere_shape(const JsonNode& node) {
   node.expect_object({"type", "name", "center", "radius", "material", "emission"});
   Sphere s;
   s.center = node["center"].as_vec3();
-  s.radius = node["radius"].as_float(0);
+  s.radius = node["radius"].as_float();
   if (!(s.radius > 0)) node["radius"].fail_expected("a positive radius");
   s.material = material_reference(node["material"]);
   Color emission;
@@ -129,6 +129,8 @@ void JsonSceneBuilder::add_mesh_shape(const JsonNode& node) {
     const Mat4 m = parse_transform(*t);
     for (auto& p : mesh.positions) p = m.apply_point(p);
     for (auto& n : mesh.normals) n = m.apply_normal(n);
+    for (const Vec3& p : mesh.positions)
+      if (!is_finite(p)) t->fail("the transformed positions are not finite (beyond the float range)");
     // A mirroring transform flips the winding; swapping two corners keeps the front face where the normals are.
     if (m.determinant3() < 0)
       for (size_t i = 0; i < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
@@ -225,7 +227,7 @@ void JsonSceneBuilder::add_light(const JsonNode& node) {
     // A pure emitter: material -1, so a ray that hits it sees its radiance and nothing behind it.
     Sphere s;
     s.center = node["center"].as_vec3();
-    s.radius = node["radius"].as_float(0);
+    s.radius = node["radius"].as_float();
     if (!(s.radius > 0)) node["radius"].fail_expected("a positive radius");
     s.light = index;
     scene_.lights.push_back(make_sphere_light(s.center, s.radius, parse_radiance(node["radiance"])));

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# Malformed input never crashes lumis: every case in tests/malformed/ (an input file NAME.EXT beside NAME.expect, see
+# tests/malformed/make_cases.py) is rendered tiny and must exit with the expected code (1 unless the .expect says
+# otherwise; 2 for usage errors), print the expected substring on stderr, and create no output file (unless the
+# expected code is 0, when the image must exist). Exit codes >= 128 (signals, sanitizer aborts) always fail.
+# Usage: malformed.sh path/to/lumis [CASE...]
+set -uo pipefail
+LUMIS=${1:?usage: malformed.sh path/to/lumis [CASE...]}
+shift
+SRC=${LUMIS_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+DIR="$SRC/tests/malformed"
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+
+failures=0
+count=0
+bad() { echo "FAIL $1: $2"; sed 's/^/    /' "$T/err" | head -20; failures=$((failures + 1)); }
+
+# run_case NAME INPUT WANT_CODE WANT_SUBSTRING [EXTRA ARGS...]
+run_case() {
+  local name=$1 input=$2 want=$3 substring=$4
+  shift 4
+  count=$((count + 1))
+  rm -rf "$T/out"
+  mkdir -p "$T/out"
+  "$LUMIS" render "$input" -o "$T/out/out.png" --spp 1 --width 8 --height 8 -q "$@" >"$T/stdout" 2>"$T/err"
+  local got=$?
+  if [ "$got" -ge 128 ]; then bad "$name" "crashed (exit $got)"; return; fi
+  if [ "$got" != "$want" ]; then bad "$name" "exit $got, expected $want"; return; fi
+  if [ -n "$substring" ] && ! grep -qF -- "$substring" "$T/err"; then
+    bad "$name" "stderr lacks '$substring'"; return
+  fi
+  if [ "$want" = 0 ]; then
+    [ -s "$T/out/out.png" ] || { bad "$name" "no image written"; return; }
+  else
+    if [ -n "$(ls -A "$T/out")" ]; then bad "$name" "left files: $(ls -A "$T/out")"; return; fi
+    [ -s "$T/err" ] || { bad "$name" "no message on stderr"; return; }
+  fi
+}
+
+cases=("$@")
+if [ ${#cases[@]} -eq 0 ]; then
+  for e in "$DIR"/*.expect; do cases+=("$(basename "$e" .expect)"); done
+fi
+for name in "${cases[@]}"; do
+  expect="$DIR/$name.expect"
+  [ -f "$expect" ] || { echo "FAIL $name: no $expect"; failures=$((failures + 1)); continue; }
+  input=""
+  for f in "$DIR/$name".*; do
+    [ "$f" = "$expect" ] || input=$f
+  done
+  [ -n "$input" ] || { echo "FAIL $name: no input file"; failures=$((failures + 1)); continue; }
+  substring=$(sed -n 's/^stderr: \{0,1\}//p' "$expect" | head -1)
+  want=$(sed -n 's/^exit: *//p' "$expect" | head -1)
+  args=$(sed -n 's/^args: *//p' "$expect" | head -1)
+  # shellcheck disable=SC2086  # args are plain words
+  run_case "$name" "$input" "${want:-1}" "$substring" $args
+done
+
+# Cases that cannot be committed as files: a missing scene, a directory, an unreadable file.
+if [ $# -eq 0 ]; then
+  run_case missing_scene "$T/no-such-scene.json" 1 "no-such-scene.json"
+  mkdir -p "$T/folder.json"
+  run_case directory_scene "$T/folder.json" 1 "folder.json"
+  cp "$DIR/json_empty_object.json" "$T/unreadable.json"
+  chmod 000 "$T/unreadable.json"
+  if ! cat "$T/unreadable.json" >/dev/null 2>&1; then   # root reads anything: skip there
+    run_case unreadable_scene "$T/unreadable.json" 1 "cannot open"
+  fi
+fi
+
+echo "$count malformed-input cases, $failures failed"
+[ "$failures" = 0 ]

@@ -1,0 +1,361 @@
+#!/usr/bin/env python3
+"""Writes the malformed-input cases of tests/malformed/ (run by tests/cli/malformed.sh).
+
+Each case is an input file NAME.EXT (a lumis JSON scene, a .gltf, a .glb or an image) and NAME.expect:
+
+    stderr: <substring that lumis must print on stderr>
+    exit: <expected exit code; default 1>
+    args: <extra command-line arguments, optional>
+
+Exit code 0 means the input must load and render (an output image is written); any other code means no output
+file may be created. glTF files are small hand-written JSON whose buffers are base64 data: URIs, so every case is
+self-contained. Usage: python3 tests/malformed/make_cases.py   (rewrites the cases in place)
+"""
+import base64
+import copy
+import json
+import math
+import os
+import struct
+import zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+written = []
+
+
+def case(name, ext, content, stderr, exit_code=1, args=None):
+    """Write NAME.EXT (str or bytes) and NAME.expect."""
+    mode = "wb" if isinstance(content, bytes) else "w"
+    with open(os.path.join(HERE, name + ext), mode) as f:
+        f.write(content)
+    lines = ["stderr: " + stderr]
+    if exit_code != 1:
+        lines.append("exit: %d" % exit_code)
+    if args:
+        lines.append("args: " + args)
+    with open(os.path.join(HERE, name + ".expect"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    written.append(name)
+
+
+def aux(name, content):
+    """A file that cases refer to (texture, buffer), not a case itself."""
+    mode = "wb" if isinstance(content, bytes) else "w"
+    with open(os.path.join(HERE, name), mode) as f:
+        f.write(content)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# lumis JSON scenes
+
+BASE = {
+    "version": 1,
+    "camera": {"from": [0, 1, 4], "to": [0, 1, 0], "fov": 40},
+    "film": {"width": 8, "height": 8},
+    "render": {"integrator": "nee_mis", "spp": 1},
+    "materials": {"grey": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+    "shapes": [{"type": "sphere", "center": [0, 1, 0], "radius": 1, "material": "grey"}],
+    "lights": [{"type": "sphere", "center": [0, 3, 0], "radius": 0.25, "radiance": [20, 20, 20]}],
+}
+
+
+def scene(**changes):
+    s = copy.deepcopy(BASE)
+    for k, v in changes.items():
+        if v is None:
+            s.pop(k, None)
+        else:
+            s[k] = v
+    return s
+
+
+def dump(s):
+    return json.dumps(s, indent=1) + "\n"
+
+
+def sphere(**changes):
+    sh = copy.deepcopy(BASE["shapes"][0])
+    sh.update(changes)
+    return sh
+
+
+# Syntax errors: line and column.
+case("json_missing_brace", ".json", '{\n  "version": 1,\n  "shapes": [\n', "invalid JSON")
+case("json_syntax_line_col", ".json", '{\n  "version": 1,\n  "film": {"width" 8}\n}\n', ":3:20: invalid JSON")
+case("json_trailing_comma", ".json", '{"version": 1, "shapes": [],}\n', ":1:29: invalid JSON")
+case("json_empty_file", ".json", "", ":1:1: invalid JSON")
+case("json_nan_literal", ".json", dump(BASE).replace('"radius": 1,', '"radius": NaN,', 1), "invalid JSON")
+case("json_huge_literal", ".json", dump(BASE).replace('"radius": 1,', '"radius": 1e999,', 1), "invalid JSON")
+case("json_binary_garbage", ".json", bytes(range(256)) * 4, "invalid JSON")
+case("json_bad_utf8", ".json", dump(BASE).encode().replace(b'"grey"', b'"gr\xff\xfey"', 1), "invalid JSON")
+case("json_deep_nesting", ".json", "[" * 20000 + "]" * 20000, "expected an object")
+case("json_duplicate_key", ".json", dump(BASE).replace('"version": 1,', '"version": 1, "version": 1,', 1),
+     "/version: duplicate key")
+case("json_not_object", ".json", "[1, 2, 3]\n", "expected an object")
+
+# Wrong types and unknown keys.
+case("json_radius_string", ".json", dump(scene(shapes=[sphere(radius="big")])), "/shapes/0/radius")
+case("json_center_two_numbers", ".json", dump(scene(shapes=[sphere(center=[1, 2])])), "/shapes/0/center")
+case("json_spp_fraction", ".json", dump(scene(render={"spp": 1.5})), "/render/spp")
+case("json_shapes_object", ".json", dump(scene(shapes={"type": "sphere"})), "/shapes: expected an array")
+case("json_unknown_top_key", ".json", dump(scene(shape=[])), 'unknown key "shape" (did you mean "shapes"?)')
+case("json_unknown_shape_key", ".json", dump(scene(shapes=[dict(sphere(), radus=1)])), '/shapes/0/radus: unknown key')
+case("json_bad_version", ".json", dump(scene(version=2)), "unsupported scene format version")
+
+# Unknown names list the valid ones.
+case("json_unknown_integrator", ".json", dump(scene(render={"integrator": "path"})),
+     "uniform, bsdf, light, mis")
+case("json_unknown_sampler", ".json", dump(scene(render={"sampler": "halton"})), "independent, stratified")
+case("json_unknown_material_type", ".json", dump(scene(materials={"grey": {"type": "plastic"}})), "diffuse")
+case("json_undefined_material", ".json", dump(scene(shapes=[sphere(material="gold")])), "grey")
+case("json_unknown_shape_type", ".json", dump(scene(shapes=[sphere(type="cube")])), "sphere")
+case("cli_unknown_integrator", ".json", dump(BASE), "valid: uniform, bsdf, light, mis, nee_mis", 2,
+     "--integrator path")
+case("cli_unknown_sampler", ".json", dump(BASE), "valid: independent, stratified, sobol", 2, "--sampler halton")
+
+# Out-of-range numbers.
+case("json_negative_radius", ".json", dump(scene(shapes=[sphere(radius=-1)])), "/shapes/0/radius: expected a positive radius")
+case("json_zero_radius", ".json", dump(scene(shapes=[sphere(radius=0)])), "/shapes/0/radius")
+case("json_zero_light_radius", ".json",
+     dump(scene(lights=[{"type": "sphere", "center": [0, 3, 0], "radius": 0, "radiance": [1, 1, 1]}])),
+     "/lights/0/radius")
+case("json_zero_spp", ".json", dump(scene(render={"spp": 0})), "/render/spp")
+case("json_negative_spp", ".json", dump(scene(render={"spp": -4})), "/render/spp")
+case("json_zero_width", ".json", dump(scene(film={"width": 0, "height": 8})), "/film/width")
+case("json_absurd_resolution", ".json", dump(scene(film={"width": 1000000, "height": 8})), "absurd resolution")
+case("json_float_overflow", ".json", dump(scene(shapes=[sphere(center=[1e39, 0, 0])])), "/shapes/0/center")
+case("json_negative_radiance", ".json",
+     dump(scene(lights=[{"type": "sphere", "center": [0, 3, 0], "radius": 1, "radiance": [-1, 1, 1]}])),
+     "/lights/0/radiance")
+case("json_camera_no_direction", ".json", dump(scene(camera={"from": [0, 1, 0], "to": [0, 1, 0]})), "/camera/to")
+case("json_zero_fov", ".json", dump(scene(camera={"from": [0, 1, 4], "to": [0, 1, 0], "fov": 0})), "/camera/fov")
+case("cli_zero_spp", ".json", dump(BASE), "--spp: Value 0 not in range", 2, "--spp 0")
+case("cli_absurd_width", ".json", dump(BASE), "--width", 2, "--width 100000")
+# A transform that is finite but sends the mesh to infinity in float.
+case("json_mesh_overflow", ".json",
+     dump(scene(shapes=[{"type": "mesh", "positions": [[0, 0, 0], [1e30, 0, 0], [0, 1e30, 0]], "indices": [0, 1, 2],
+                         "material": "grey", "transform": {"scale": 1e30}}])), "/shapes/0/transform: the transformed positions are not finite")
+
+# Empty scenes.
+case("json_empty_object", ".json", "{}\n", "scene is empty")
+case("json_empty_arrays", ".json", dump(scene(shapes=[], lights=[])), "scene is empty")
+
+# Missing, unreadable or unsupported files referred to by a scene.
+case("json_missing_texture", ".json",
+     dump(scene(materials={"grey": {"type": "diffuse", "texture": "no-such-texture.png"}})), "no-such-texture.png")
+case("json_missing_gltf", ".json", dump(scene(shapes=[{"type": "gltf", "file": "no-such-model.glb"}])),
+     "no-such-model.glb")
+aux("aux_not_an_image.png", "this is text, not a PNG\n")
+case("json_texture_not_image", ".json",
+     dump(scene(materials={"grey": {"type": "diffuse", "texture": "aux_not_an_image.png"}})), "aux_not_an_image.png")
+aux("aux_texture.txt", "plain text\n")
+case("json_texture_unsupported_format", ".json",
+     dump(scene(materials={"grey": {"type": "diffuse", "texture": "aux_texture.txt"}})), "aux_texture.txt")
+case("json_texture_is_directory", ".json",
+     dump(scene(materials={"grey": {"type": "diffuse", "texture": "."}})), "/materials/grey/texture")
+
+
+def png(width, height, rgb):
+    """A tiny 8-bit RGB PNG."""
+    raw = b"".join(b"\x00" + bytes(rgb) * width for _ in range(height))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+aux("aux_truncated.png", png(4, 4, [200, 100, 50])[:40])
+case("json_texture_truncated_png", ".json",
+     dump(scene(materials={"grey": {"type": "diffuse", "texture": "aux_truncated.png"}})), "aux_truncated.png")
+aux("aux_truncated.exr", b"v/1\x01\x02\x00\x00\x00channels\x00chlist\x00")
+case("json_environment_truncated_exr", ".json",
+     dump(scene(lights=[{"type": "environment", "file": "aux_truncated.exr"}])), "aux_truncated.exr")
+
+# An image or an unknown file given as the scene itself.
+case("image_as_scene", ".png", png(2, 2, [10, 20, 30]), "unknown scene file type")
+case("text_as_scene", ".txt", "hello\n", "unknown scene file type")
+
+# ---------------------------------------------------------------------------------------------------------------
+# glTF: one triangle (or a quad of two) in a data: URI buffer.
+
+
+def f32(values):
+    return struct.pack("<%df" % len(values), *values)
+
+
+def u16(values):
+    data = struct.pack("<%dH" % len(values), *values)
+    return data + b"\x00" * (-len(data) % 4)
+
+
+def gltf_doc(positions, indices, extra_bytes=b""):
+    """A glTF dict with POSITION (accessor 0) and indices (accessor 1) in one buffer, and the buffer's bytes."""
+    pos = f32([c for p in positions for c in p])
+    idx = u16(indices)
+    data = pos + idx + extra_bytes
+    finite = [p for p in positions if all(math.isfinite(c) for c in p)] or [(0, 0, 0)]
+    doc = {
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "buffers": [{"byteLength": len(data)}],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": len(pos)},
+            {"buffer": 0, "byteOffset": len(pos), "byteLength": 2 * len(indices)},
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": len(positions), "type": "VEC3",
+             "min": [min(p[i] for p in finite) for i in range(3)], "max": [max(p[i] for p in finite) for i in range(3)]},
+            {"bufferView": 1, "componentType": 5123, "count": len(indices), "type": "SCALAR"},
+        ],
+    }
+    return doc, data
+
+
+def embed(doc, data):
+    doc = copy.deepcopy(doc)
+    doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(data).decode()
+    return json.dumps(doc, indent=1) + "\n"
+
+
+def glb(doc, data):
+    doc = copy.deepcopy(doc)
+    doc["buffers"][0].pop("uri", None)
+    js = json.dumps(doc).encode()
+    js += b" " * (-len(js) % 4)
+    data = data + b"\x00" * (-len(data) % 4)
+    body = struct.pack("<I4s", len(js), b"JSON") + js + struct.pack("<I4s", len(data), b"BIN\x00") + data
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body
+
+
+TRI = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+good_doc, good_data = gltf_doc(TRI, [0, 1, 2])
+
+
+def variant(mutate, positions=TRI, indices=(0, 1, 2)):
+    doc, data = gltf_doc(positions, list(indices))
+    mutate(doc)
+    return doc, data
+
+
+case("gltf_invalid_json", ".gltf", '{"asset": {"version": "2.0"}, "meshes": [\n', "invalid glTF")
+case("gltf_not_gltf", ".gltf", '{"hello": 1}\n', "invalid glTF")
+good_glb = glb(good_doc, good_data)
+case("glb_truncated", ".glb", good_glb[: len(good_glb) // 2], "invalid .glb")
+case("glb_header_only", ".glb", good_glb[:12], "invalid .glb")
+case("glb_empty", ".glb", b"", "invalid")
+case("glb_length_too_large", ".glb", good_glb[:8] + struct.pack("<I", 1 << 30) + good_glb[12:], "invalid .glb")
+case("glb_chunk_length_too_large", ".glb", good_glb[:12] + struct.pack("<I", 1 << 30) + good_glb[16:], "invalid .glb")
+case("glb_bad_magic", ".glb", b"gltf" + good_glb[4:], "invalid")
+
+
+def set_path(path, value):
+    def mutate(doc):
+        obj = doc
+        for k in path[:-1]:
+            obj = obj[k]
+        obj[path[-1]] = value
+    return mutate
+
+
+case("gltf_indices_accessor_oob", ".gltf", embed(*variant(set_path(["meshes", 0, "primitives", 0, "indices"], 7))),
+     "indices accessor out of bounds")  # tinygltf's own check, before lumis's
+case("gltf_position_accessor_negative", ".gltf",
+     embed(*variant(set_path(["meshes", 0, "primitives", 0, "attributes", "POSITION"], -3))), "POSITION")
+case("gltf_accessor_count_oob", ".gltf", embed(*variant(set_path(["accessors", 0, "count"], 1000))), "accessors[0]")
+case("gltf_accessor_offset_oob", ".gltf", embed(*variant(set_path(["accessors", 1, "byteOffset"], 4096))),
+     "accessors[1]")
+case("gltf_accessor_huge_count", ".gltf", embed(*variant(set_path(["accessors", 0, "count"], 2 ** 40))),
+     "accessors[0]")
+case("gltf_bufferview_oob", ".gltf", embed(*variant(set_path(["bufferViews", 1, "byteLength"], 1 << 20))),
+     "bufferViews[1]")
+case("gltf_bufferview_index_oob", ".gltf", embed(*variant(set_path(["accessors", 0, "bufferView"], 9))),
+     "bufferView index 9 out of range")
+case("gltf_buffer_index_oob", ".gltf", embed(*variant(set_path(["bufferViews", 0, "buffer"], 4))), "bufferViews[0]")
+case("gltf_index_value_oob", ".gltf", embed(*variant(lambda d: None, indices=(0, 1, 99))), "index value 99")
+case("gltf_stride_too_small", ".gltf", embed(*variant(set_path(["bufferViews", 0, "byteStride"], 4))),
+     "byteStride")
+case("gltf_bad_component_type", ".gltf", embed(*variant(set_path(["accessors", 0, "componentType"], 5130))),
+     "accessors[0]")
+case("gltf_position_vec2", ".gltf", embed(*variant(set_path(["accessors", 0, "type"], "VEC2"))), "expected VEC3")
+case("gltf_mesh_index_oob", ".gltf", embed(*variant(set_path(["nodes", 0, "mesh"], 5))), "mesh index 5")
+case("gltf_material_index_oob", ".gltf", embed(*variant(set_path(["meshes", 0, "primitives", 0, "material"], 3))),
+     "material index 3")
+case("gltf_bad_mode", ".gltf", embed(*variant(set_path(["meshes", 0, "primitives", 0, "mode"], 9))), "mode 9")
+case("gltf_required_extension", ".gltf",
+     embed(*variant(set_path(["extensionsRequired"], ["KHR_draco_mesh_compression"]))), "KHR_draco_mesh_compression")
+case("gltf_bad_base64", ".gltf",
+     embed(*variant(lambda d: None)).replace("base64,", "base64,!!!!", 1), "invalid glTF")
+case("gltf_missing_buffer_file", ".gltf",
+     json.dumps(dict(good_doc, buffers=[{"byteLength": len(good_data), "uri": "no-such-buffer.bin"}])),
+     "no-such-buffer.bin")
+case("gltf_nan_position", ".gltf", embed(*variant(lambda d: None, positions=[(0, 0, 0), (math.nan, 0, 0), (0, 1, 0)])),
+     "not finite")
+case("gltf_inf_position", ".gltf", embed(*variant(lambda d: None, positions=[(0, 0, 0), (1, 0, 0), (0, math.inf, 0)])),
+     "not finite")
+case("gltf_huge_translation", ".gltf", embed(*variant(set_path(["nodes", 0, "translation"], [1e300, 0, 0]))),
+     "not finite")
+# Degenerate triangles (repeated and collinear corners) load and render; only the good one is visible.
+case("gltf_degenerate_triangles", ".gltf",
+     embed(*variant(lambda d: None, positions=[(0, 0, 0), (1, 0, 0), (0, 1, 0), (2, 0, 0)],
+                    indices=(0, 1, 2, 0, 0, 0, 0, 1, 3, 1, 1, 2))), "", 0)
+case("json_degenerate_mesh", ".json",
+     dump(scene(shapes=[{"type": "mesh", "positions": [[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0]],
+                         "indices": [0, 1, 2, 0, 0, 0, 0, 1, 3], "material": "grey"}])), "", 0)
+
+
+def hierarchy(nodes):
+    def mutate(doc):
+        doc["nodes"] = nodes
+    return mutate
+
+
+# Every node has one parent, but the parents form a loop 0 -> 1 -> 2 -> 0.
+case("gltf_node_cycle", ".gltf", embed(*variant(hierarchy([{"mesh": 0, "children": [1]}, {"children": [2]},
+                                                           {"children": [0]}]))), "cycle")
+case("gltf_node_self_child", ".gltf", embed(*variant(hierarchy([{"mesh": 0, "children": [0]}]))), "cycle")
+case("gltf_node_two_parents", ".gltf",
+     embed(*variant(hierarchy([{"children": [2]}, {"children": [2]}, {"mesh": 0}]))), "already has parent")
+case("gltf_node_child_oob", ".gltf", embed(*variant(hierarchy([{"mesh": 0, "children": [42]}]))),
+     "node index 42 out of range")
+case("gltf_scene_node_oob", ".gltf", embed(*variant(set_path(["scenes", 0, "nodes"], [17]))), "17")
+
+
+def textured(image):
+    def mutate(doc):
+        doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+        doc["meshes"][0]["primitives"][0]["material"] = 0
+        doc["textures"] = [{"source": 0}]
+        doc["images"] = [image]
+    return mutate
+
+
+case("gltf_missing_texture", ".gltf", embed(*variant(textured({"uri": "no-such-image.png"}))), "no-such-image.png")
+case("gltf_texture_not_image", ".gltf", embed(*variant(textured({"uri": "aux_not_an_image.png"}))),
+     "aux_not_an_image.png")
+case("gltf_texture_unsupported_mime", ".gltf",
+     embed(*variant(textured({"uri": "data:image/gif;base64," + base64.b64encode(b"GIF89a....").decode()}))),
+     "images[0]")
+case("gltf_texture_corrupt_png", ".gltf",
+     embed(*variant(textured({"uri": "data:image/png;base64," + base64.b64encode(png(4, 4, [1, 2, 3])[:50]).decode()}))),
+     "images[0]")
+case("gltf_texture_index_oob", ".gltf",
+     embed(*variant(lambda d: (textured({"uri": "data:image/png;base64," + base64.b64encode(png(1, 1, [9, 9, 9])).decode()})(d),
+                               d["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"].update(index=8)))),
+     "texture index 8")
+
+# Empty glTF scenes.
+case("gltf_no_meshes", ".gltf", json.dumps({"asset": {"version": "2.0"}, "scenes": [{"nodes": []}], "scene": 0}),
+     "scene is empty")
+case("gltf_only_asset", ".gltf", json.dumps({"asset": {"version": "2.0"}}), "scene is empty")
+
+# Remove stale cases (files this script no longer writes).
+keep = set(written)
+for f in os.listdir(HERE):
+    if f.endswith(".expect") and f[: -len(".expect")] not in keep:
+        os.remove(os.path.join(HERE, f))
+print("%d cases" % len(written))
