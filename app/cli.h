@@ -16,7 +16,7 @@ struct RenderOverrides {
   std::optional<uint32_t> spp, seed;
   std::optional<int> max_depth, rr_depth, width, height, threads;
   std::optional<std::string> integrator, sampler, light_selection, mis_heuristic, uniform_measure;
-  std::optional<float> time, exposure;
+  std::optional<float> time, exposure, mis_light_probability;
 };
 
 /// Register the override options on a CLI11 subcommand.
@@ -34,5 +34,6 @@ void register_render_command(CLI::App& app, int& exit_code);
 void register_warptest_command(CLI::App& app, int& exit_code);
 void register_diff_command(CLI::App& app, int& exit_code);
 void register_compare_command(CLI::App& app, int& exit_code);
+void register_bench_command(CLI::App& app, int& exit_code);
 
 }  // namespace lumis

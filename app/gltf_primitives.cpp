@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "app/gltf_internal.h"
+#include "core/tangents.h"
 
 namespace lumis::gltf {
 
@@ -183,6 +184,8 @@ void PrimitiveBuilder::add_mesh(int mesh, const Mat4& world, const std::string& 
 
     tm.material = d.material;
     const GltfMaterial& mat = scene_.materials[d.material];
+    // Normal maps need tangents; glTF asks renderers to generate them when the file has none.
+    if (mat.params.normal_texture && tm.tangents.empty()) generate_tangents(tm, mat.params.normal_texture->tex_coord);
     if (mat.alpha_mode == AlphaMode::Mask)
       tm.alpha = AlphaMask{mat.alpha_cutoff, mat.params.base_alpha, mat.params.base_color_texture};
     scene_.meshes.push_back(std::move(tm));

@@ -18,6 +18,9 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
   cmd.add_option("--sampler", o.sampler, "independent | stratified | sobol");
   cmd.add_option("--light-selection", o.light_selection, "uniform | power | importance");
   cmd.add_option("--mis-heuristic", o.mis_heuristic, "balance | power");
+  cmd.add_option("--mis-light-probability", o.mis_light_probability,
+                 "For --integrator mis: probability c_l of the light strategy (default 0.5)")
+      ->check(CLI::Range(0.0f, 1.0f));
   cmd.add_option("--uniform-measure", o.uniform_measure, "theta-phi | solid-angle (for --integrator uniform)");
   cmd.add_option("--time", o.time, "Stop after this many seconds (writes what was rendered)")
       ->check(CLI::PositiveNumber);
@@ -34,6 +37,7 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
   if (o.threads) s.threads = *o.threads;
   if (o.time) s.time_budget = *o.time;
   if (o.exposure) s.exposure = *o.exposure;
+  if (o.mis_light_probability) s.mis_light_probability = *o.mis_light_probability;
   if (o.integrator) {
     bool ok = false;
     for (const auto& n : integrator_names()) ok |= n == *o.integrator;
