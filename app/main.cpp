@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   lumis::register_warptest_command(app, exit_code);
   lumis::register_diff_command(app, exit_code);
   lumis::register_compare_command(app, exit_code);
+  lumis::register_bench_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

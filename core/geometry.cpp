@@ -147,6 +147,7 @@ const Sphere& Geometry::sphere(uint32_t id) const { return impl_->spheres[impl_-
 size_t Geometry::geometry_count() const { return impl_->slots.size(); }
 size_t Geometry::triangle_count() const { return impl_->triangles; }
 Bounds3 Geometry::bounds() const { return impl_->bounds; }
+void* Geometry::embree_scene() const { return impl_->scene; }
 
 void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, Hit& hit) const {
   hit.geom_id = geom_id;

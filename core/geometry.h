@@ -110,6 +110,8 @@ class Geometry {
   Bounds3 bounds() const;
   /// Fill a Hit for a point given by primitive and barycentrics (used by lights sampling mesh surfaces).
   void fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, Hit& hit) const;
+  /// The committed RTCScene (as void*, so this header needs no Embree include); for raw-throughput benchmarks.
+  void* embree_scene() const;
 
  private:
   struct Impl;

@@ -15,6 +15,8 @@ namespace lumis {
 /// Per-thread counters.
 struct PathCounters {
   uint64_t rays = 0;  ///< closest-hit and shadow rays traced
+  uint64_t shadow_rays = 0;    ///< of which occlusion (shadow) rays, for `lumis bench`
+  uint64_t light_queries = 0;  ///< of which all-light-hit queries (one-sample MIS density), for `lumis bench`
 };
 
 class Integrator {

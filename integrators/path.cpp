@@ -49,6 +49,7 @@ Color estimate_direct(const Vertex& v, float u_choice, Vec2 u_light, bool mis_we
   const Color f = v.bsdf.f(v.wo, wi);
   if (is_black(f)) return {};
   ++counters.rays;
+  ++counters.shadow_rays;
   const Ray shadow = std::isinf(ls->dist) ? spawn_ray(v.hit, ls->wi) : spawn_ray_to(v.hit, ls->p_light);
   if (scene.geometry.occluded(shadow)) return {};
   const float pdf_light = choice->pmf * ls->pdf;
@@ -70,6 +71,7 @@ float light_strategy_pdf(const Scene& scene, const Hit& from, const LightSampleC
   constexpr int kMaxHits = 64;
   LightHitRecord hits[kMaxHits];
   ++counters.rays;
+  ++counters.light_queries;
   const int n = scene.geometry.all_light_hits(spawn_ray(from, wi), hits, kMaxHits);
   uint32_t spheres_seen[kMaxHits];
   int n_spheres = 0;

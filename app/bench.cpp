@@ -1,0 +1,373 @@
+// `lumis bench`: per scene, load (timed, peak memory tracked), render every variant (timed, rays counted by kind),
+// one-thread scaling run, raw Embree throughput on the same BVH, BVH build on a copy, further loads for the median.
+#include "app/bench.h"
+
+#include <malloc.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include "app/scene_error.h"
+#include "app/scene_loader.h"
+#include "integrators/integrator.h"
+#include "integrators/render.h"
+
+namespace lumis {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// A field of /proc/self/status in bytes (VmRSS, VmHWM); 0 when unavailable.
+size_t proc_status_bytes(const std::string& key) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(key + ":", 0) == 0) return size_t(std::stoull(line.substr(key.size() + 1))) * 1024;
+  return 0;
+}
+
+// Resets the kernel's peak-RSS mark (VmHWM) to the current RSS, so that each scene's peak is its own.
+bool reset_peak_rss() {
+  std::ofstream out("/proc/self/clear_refs");
+  out << "5";
+  out.flush();
+  return bool(out);
+}
+
+double load_average() {
+  std::ifstream in("/proc/loadavg");
+  double a = 0;
+  in >> a;
+  return a;
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) {
+      const size_t c = line.find(':');
+      return c == std::string::npos ? line : line.substr(c + 2);
+    }
+  return "unknown";
+}
+
+// Forwards to a variant and also keeps its per-kind ray counts, which render() does not sum.
+class CountingIntegrator final : public Integrator {
+ public:
+  explicit CountingIntegrator(const Integrator& inner) : inner_(inner) {}
+  Color li(const Scene& scene, const Ray& ray, Sampler& sampler, AovSample* aov,
+           PathCounters& counters) const override {
+    PathCounters local;
+    const Color c = inner_.li(scene, ray, sampler, aov, local);
+    counters.rays += local.rays;
+    PathCounters& mine = mine_.local();
+    mine.rays += local.rays;
+    mine.shadow_rays += local.shadow_rays;
+    mine.light_queries += local.light_queries;
+    return c;
+  }
+  const char* name() const override { return inner_.name(); }
+  PathCounters totals() const {
+    PathCounters t;
+    for (const PathCounters& c : mine_) {
+      t.rays += c.rays;
+      t.shadow_rays += c.shadow_rays;
+      t.light_queries += c.light_queries;
+    }
+    return t;
+  }
+
+ private:
+  const Integrator& inner_;
+  mutable tbb::enumerable_thread_specific<PathCounters> mine_;
+};
+
+double cpu_seconds() {
+  rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// One render of scene.settings.integrator: wall and CPU time, rays by kind (the counts are the same every time: the
+// random numbers depend only on pixel, sample index and seed).
+VariantResult render_once(const Scene& scene, int threads) {
+  const std::unique_ptr<Integrator> integrator = make_integrator(scene.settings);
+  CountingIntegrator counting(*integrator);
+  Film film(scene.settings.width, scene.settings.height, FilmOptions{false, false, false, false});
+  RenderOptions ro;
+  ro.spp = scene.settings.spp;
+  ro.threads = threads;
+  const double c0 = cpu_seconds();
+  const RenderStats st = render(scene, counting, film, ro);
+  VariantResult v;
+  v.cpu_seconds = cpu_seconds() - c0;
+  v.seconds = st.seconds;
+  v.integrator = integrator->name();
+  const PathCounters t = counting.totals();
+  v.samples = st.samples;
+  v.rays = st.rays;
+  v.camera_rays = st.samples;  // one camera ray per pixel sample
+  v.shadow_rays = t.shadow_rays;
+  v.light_queries = t.light_queries;
+  v.bounce_rays = t.rays - t.shadow_rays - t.light_queries - std::min<uint64_t>(t.rays, st.samples);
+  return v;
+}
+
+// Seconds Embree takes for this mix of rays at the given rates (wall or CPU); 0 when a needed rate is missing.
+double raw_seconds(const VariantResult& v, const RawThroughput& raw, bool packets, bool cpu) {
+  const auto pick = [cpu](const Rate& r) { return cpu ? r.cpu : r.wall; };
+  const std::pair<uint64_t, double> parts[] = {
+      {v.camera_rays, pick(packets ? raw.camera16 : raw.camera1)},
+      {v.bounce_rays, pick(packets ? raw.bounce16 : raw.bounce1)},
+      {v.shadow_rays, pick(packets ? raw.shadow16 : raw.shadow1)},
+      {v.light_queries, pick(raw.light_query)}};
+  double s = 0;
+  for (const auto& [n, rate] : parts) {
+    if (n == 0) continue;
+    if (!(rate > 0)) return 0;
+    s += double(n) / rate;
+  }
+  return s;
+}
+
+// Medians over the repetitions; each ratio pairs a render with the raw timing of the same repetition, so that
+// slow drifts of the machine's load cancel.
+VariantResult aggregate(const std::vector<VariantResult>& runs, const std::vector<RawThroughput>& raws,
+                        const RawThroughput& raw_median) {
+  VariantResult v = runs.back();
+  std::vector<double> wall, cpu, ratio[4];
+  for (size_t r = 0; r < runs.size(); ++r) {
+    wall.push_back(runs[r].seconds);
+    cpu.push_back(runs[r].cpu_seconds);
+    for (int k = 0; k < 4; ++k) {
+      const bool packets = k & 1, use_cpu = k & 2;
+      const double raw_s = raw_seconds(v, raws[r], packets, use_cpu);
+      const double own_s = use_cpu ? runs[r].cpu_seconds : runs[r].seconds;
+      if (raw_s > 0 && own_s > 0) ratio[k].push_back(raw_s / own_s);
+    }
+  }
+  v.seconds = median(wall);
+  v.cpu_seconds = median(cpu);
+  v.samples_per_s = double(v.samples) / std::max(v.seconds, 1e-12);
+  v.rays_per_s = double(v.rays) / std::max(v.seconds, 1e-12);
+  const double s1 = raw_seconds(v, raw_median, false, false), s16 = raw_seconds(v, raw_median, true, false);
+  v.raw_mix_rays_per_s = s1 > 0 ? double(v.rays) / s1 : 0;
+  v.raw_mix_packet_rays_per_s = s16 > 0 ? double(v.rays) / s16 : 0;
+  v.ratio = median(ratio[0]);
+  v.ratio_packets = median(ratio[1]);
+  v.ratio_cpu = median(ratio[2]);
+  v.ratio_cpu_packets = median(ratio[3]);
+  return v;
+}
+
+// Geometry::commit of a copy of the scene's geometry: the BVH build alone, with the flags the loader uses.
+double time_bvh_build(const Geometry& g) {
+  Geometry copy;
+  for (uint32_t id = 0; id < g.geometry_count(); ++id) {
+    if (g.is_mesh(id)) copy.add_mesh(g.mesh(id));
+    else copy.add_sphere(g.sphere(id));
+  }
+  const auto t0 = Clock::now();
+  copy.commit();
+  return seconds_since(t0);
+}
+
+struct BenchScene {
+  std::string name, path;
+  bool generated = false;
+};
+
+void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, SceneResult& res) {
+  const int repeat = std::max(1, o.repeat);
+  res.name = which.name;
+  res.path = which.path;
+  malloc_trim(0);
+  res.baseline_rss = proc_status_bytes("VmRSS");
+  res.peak_reset = reset_peak_rss();
+  auto t0 = Clock::now();
+  std::unique_ptr<Scene> scene = load_scene(which.path);
+  std::vector<double> loads{seconds_since(t0)};
+
+  RenderSettings& s = scene->settings;
+  apply_overrides(o.overrides, s);
+  s.time_budget = 0;
+  if (!o.overrides.width) s.width = o.quick ? 32 : 256;
+  if (!o.overrides.height) s.height = o.quick ? 32 : 256;
+  if (!o.overrides.spp) s.spp = o.quick ? 1 : 4;
+  scene->update_light_selector();
+  res.triangles = scene->geometry.triangle_count();
+  res.lights = scene->lights.size();
+  res.width = s.width;
+  res.height = s.height;
+  res.spp = s.spp;
+  res.threads = threads;
+
+  std::vector<std::string> variants = integrator_names();
+  if (o.overrides.integrator) variants = {*o.overrides.integrator};
+  // Thread scaling on nee_mis (the default and the variant the targets are about), or the one variant asked for.
+  res.scaling_integrator = o.overrides.integrator ? *o.overrides.integrator : "nee_mis";
+  const size_t rays = o.raw_rays ? o.raw_rays : (o.quick ? size_t(1) << 12 : size_t(1) << 19);
+  std::vector<std::vector<VariantResult>> runs(variants.size());
+  std::vector<VariantResult> single;
+  std::vector<RawThroughput> raws;
+  std::unique_ptr<RawBench> raw;
+  // Repetitions outermost: the renders and the raw timings they are compared with see the same machine load.
+  for (int r = 0; r < repeat; ++r) {
+    std::fprintf(stderr, "lumis bench: %s: repetition %d of %d\n", res.name.c_str(), r + 1, repeat);
+    for (size_t i = 0; i < variants.size(); ++i) {
+      s.integrator = variants[i];
+      runs[i].push_back(render_once(*scene, threads));
+    }
+    s.integrator = res.scaling_integrator;
+    single.push_back(render_once(*scene, 1));
+    if (r == 0) {  // the peak of loading and rendering, before the raw benchmark's ray buffers exist
+      res.peak_rss = proc_status_bytes("VmHWM");
+      raw = std::make_unique<RawBench>(*scene, s.width, s.height, threads, rays);
+    }
+    raws.push_back(raw->measure());
+  }
+  raw.reset();
+  res.raw = median_raw(raws);
+  for (size_t i = 0; i < variants.size(); ++i) res.variants.push_back(aggregate(runs[i], raws, res.raw));
+  std::vector<double> single_rates, utilisation;
+  for (const VariantResult& v : single) single_rates.push_back(double(v.samples) / std::max(v.seconds, 1e-12));
+  res.samples_per_s_1 = median(single_rates);
+  for (size_t i = 0; i < variants.size(); ++i) {
+    if (variants[i] != res.scaling_integrator) continue;
+    res.samples_per_s_n = res.variants[i].samples_per_s;
+    for (const VariantResult& v : runs[i]) utilisation.push_back(v.cpu_seconds / std::max(v.seconds * threads, 1e-12));
+  }
+  res.cpu_utilisation = median(utilisation);
+  if (res.triangles >= 10000 && res.peak_rss > res.baseline_rss)
+    res.bytes_per_triangle = double(res.peak_rss - res.baseline_rss) / double(res.triangles);
+
+  std::vector<double> builds;
+  for (int r = 0; r < repeat; ++r) builds.push_back(time_bvh_build(scene->geometry));
+  res.bvh_seconds = median(builds);
+  scene.reset();
+  for (int r = 1; r < repeat; ++r) {
+    t0 = Clock::now();
+    std::unique_ptr<Scene> again = load_scene(which.path);
+    loads.push_back(seconds_since(t0));
+  }
+  res.load_seconds = median(loads);
+}
+
+std::vector<BenchScene> default_scenes(const BenchOptions& o) {
+  const fs::path src(LUMIS_SOURCE_DIR);
+  std::vector<BenchScene> out;
+  const char* shipped[] = {"cornell-sphere", "veach-mis", "night-lights"};
+  for (const char* n : shipped) {
+    if (o.quick && std::string(n) != "cornell-sphere") continue;
+    const fs::path p = fs::path(default_scene_path()).parent_path() / (std::string(n) + ".json");
+    out.push_back({n, p.string()});
+  }
+  out.push_back({"large", kLargeSceneToken, true});
+  if (o.quick) return out;
+  const fs::path assets = o.assets_dir.empty() ? src.parent_path() / "shared" / "assets" : fs::path(o.assets_dir);
+  const char* models[] = {"ToyCar", "MetalRoughSpheresNoTextures"};
+  for (const char* m : models) {
+    const fs::path p = assets / "gltf" / m / "glTF" / (std::string(m) + ".gltf");
+    std::error_code ec;
+    if (fs::is_regular_file(p, ec)) out.push_back({m, p.string()});
+  }
+  return out;
+}
+
+}  // namespace
+
+int run_bench(const BenchOptions& o) {
+  try {  // reject bad override names before any work
+    RenderSettings probe;
+    apply_overrides(o.overrides, probe);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "lumis: " << e.what() << "\n";
+    return 2;
+  }
+  BenchReport report;
+  report.cpu = cpu_model();
+  report.cores = int(std::thread::hardware_concurrency());
+  report.threads = o.overrides.threads ? *o.overrides.threads : report.cores;
+  report.repeat = std::max(1, o.repeat);
+  report.quick = o.quick;
+  report.load_average_start = load_average();
+
+  std::vector<BenchScene> scenes;
+  if (o.scenes.empty()) scenes = default_scenes(o);
+  for (const std::string& p : o.scenes) {
+    if (p == kLargeSceneToken) scenes.push_back({"large", p, true});
+    else scenes.push_back({fs::path(p).stem().string(), p});
+  }
+
+  int status = 0;
+  for (const BenchScene& sc : scenes) {
+    SceneResult res;
+    BenchScene which = sc;
+    fs::path temp;
+    try {
+      if (sc.generated) {
+        const size_t tris = o.quick ? std::min<size_t>(o.large_triangles, 20000) : o.large_triangles;
+        temp = fs::temp_directory_path() / ("lumis-bench-large-" + std::to_string(getpid()) + ".glb");
+        std::fprintf(stderr, "lumis bench: writing the large scene (%zu triangles) to %s\n", tris,
+                     temp.string().c_str());
+        const auto t0 = Clock::now();
+        const LargeSceneInfo info = write_large_scene(temp.string(), tris);
+        res.generate_seconds = seconds_since(t0);
+        res.file_bytes = info.bytes;
+        which.path = temp.string();
+      } else {
+        std::error_code ec;
+        res.file_bytes = fs::is_regular_file(sc.path, ec) ? size_t(fs::file_size(sc.path, ec)) : 0;
+      }
+      bench_scene(which, o, report.threads, res);
+      if (sc.generated) res.path = "(generated) " + res.path;
+    } catch (const std::exception& e) {
+      res.name = sc.name;
+      res.path = which.path;
+      res.error = e.what();
+      std::cerr << "lumis: bench: " << sc.name << ": " << e.what() << "\n";
+      status = 1;
+    }
+    if (!temp.empty()) {
+      std::error_code ec;
+      fs::remove(temp, ec);
+    }
+    report.scenes.push_back(std::move(res));
+  }
+  report.load_average_end = load_average();
+
+  print_bench_report(report);
+  if (!o.json_out.empty()) {
+    std::ofstream out(o.json_out);
+    out << bench_report_json(report) << "\n";
+    if (!out) {
+      std::cerr << "lumis: " << o.json_out << ": cannot write the JSON report\n";
+      return 1;
+    }
+  }
+  return status;
+}
+
+}  // namespace lumis

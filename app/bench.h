@@ -1,0 +1,128 @@
+// `lumis bench`: lumis's speed measured against Embree's own limit on the same scenes. For each scene: raw Embree
+// throughput for the scene's kinds of rays (no shading), each integrator variant's samples/s and rays/s, the ratio
+// of the two for the variant's own mix of rays, load and BVH build time, peak memory and thread scaling.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/cli.h"
+#include "integrators/scene.h"
+
+namespace lumis {
+
+struct BenchOptions {
+  std::vector<std::string> scenes;  ///< empty: the shipped scenes, the generated large scene, the shared models
+  RenderOverrides overrides;        ///< --spp, --width, --height, --threads, --integrator (one variant only), ...
+  int repeat = 3;                   ///< every figure is the median of this many runs
+  bool quick = false;               ///< tiny settings for the smoke test
+  std::string json_out;             ///< write the results as JSON here when set
+  std::string assets_dir;           ///< the shared assets folder (with gltf/); empty: next to the sources
+  size_t large_triangles = 1'000'000;
+  size_t raw_rays = 0;              ///< rays per kind for the raw Embree measurement; 0: 2^19 (quick: 2^12)
+};
+
+/// Run the benchmark; prints the table on stdout. Returns the process exit code.
+int run_bench(const BenchOptions& options);
+
+/// The name that stands for the generated large scene in a scene list.
+inline constexpr const char* kLargeSceneToken = "@large";
+
+struct LargeSceneInfo {
+  size_t triangles = 0;
+  size_t bytes = 0;  ///< file size
+};
+
+/// Write the large benchmark scene as a binary glTF: a closed room (every incoherent ray hits something) whose
+/// walls are finely tessellated, with tessellated spheres on the floor, a small emissive ceiling quad and a camera
+/// inside. At least min_triangles triangles. Throws std::runtime_error when the file cannot be written.
+LargeSceneInfo write_large_scene(const std::string& path, size_t min_triangles);
+
+/// A throughput: rays per second of wall-clock time, and per second of CPU time over all the process's threads.
+/// On a shared machine the CPU-time figure does not depend on how many cores the benchmark actually got.
+struct Rate {
+  double wall = 0, cpu = 0;
+};
+
+/// Embree's raw throughput (no shading) for the kinds of rays a path tracer traces in this scene: camera rays,
+/// cosine-distributed bounce rays from the points camera rays hit, and shadow rays from those points toward points
+/// sampled on the lights (by the scene's own light selector).
+struct RawThroughput {
+  Rate camera1, camera16;   ///< rtcIntersect1 / rtcIntersect16 (coherent 4x4 pixel packets)
+  Rate bounce1, bounce16;   ///< rtcIntersect1 / rtcIntersect16 (incoherent)
+  Rate shadow1, shadow16;   ///< rtcOccluded1 / rtcOccluded16
+  Rate light_query;         ///< Geometry::all_light_hits on the bounce rays (the `mis` density query)
+  size_t camera_rays = 0, bounce_rays = 0, shadow_rays = 0;
+  double camera_hit_fraction = 0, bounce_hit_fraction = 0, shadow_occluded_fraction = 0;
+};
+
+/// Makes the rays once (from the scene's camera at width x height, its hit points and its lights), then times
+/// only the Embree calls, on `threads` threads, as often as asked.
+class RawBench {
+ public:
+  RawBench(const Scene& scene, int width, int height, int threads, size_t rays_per_kind);
+  ~RawBench();
+  /// One timing of every kind of ray.
+  RawThroughput measure();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Element-wise median of several measurements.
+RawThroughput median_raw(const std::vector<RawThroughput>& runs);
+
+/// One integrator variant on one scene (all threads unless stated).
+struct VariantResult {
+  std::string integrator;
+  double seconds = 0;                ///< median render time
+  double cpu_seconds = 0;            ///< median CPU time of the render, all threads
+  uint64_t samples = 0, rays = 0;    ///< per render
+  uint64_t camera_rays = 0, bounce_rays = 0, shadow_rays = 0, light_queries = 0;  ///< rays split by kind
+  double samples_per_s = 0, rays_per_s = 0;
+  double raw_mix_rays_per_s = 0;     ///< raw Embree rate for this mix of rays (rtcIntersect1/rtcOccluded1)
+  double raw_mix_packet_rays_per_s = 0;  ///< the same with 16-wide packets where Embree has them
+  double ratio = 0, ratio_packets = 0;   ///< rays_per_s over the two raw mix rates (median over repetitions)
+  double ratio_cpu = 0, ratio_cpu_packets = 0;  ///< the same per CPU-second (insensitive to other load)
+};
+
+struct SceneResult {
+  std::string name, path;
+  std::string error;                 ///< non-empty: the scene could not be benchmarked
+  size_t triangles = 0, lights = 0;
+  int width = 0, height = 0;
+  uint32_t spp = 0;
+  double generate_seconds = 0;       ///< generated scene: writing the .glb
+  size_t file_bytes = 0;
+  double load_seconds = 0;           ///< load_scene, BVH build included (median)
+  double bvh_seconds = 0;            ///< Geometry::commit of a copy of the scene's geometry (median)
+  size_t baseline_rss = 0, peak_rss = 0;  ///< bytes: before loading; peak while loading and rendering
+  bool peak_reset = false;           ///< the peak was reset before loading (else it is the process's peak)
+  double bytes_per_triangle = 0;     ///< (peak - baseline) / triangles
+  RawThroughput raw;
+  std::vector<VariantResult> variants;
+  std::string scaling_integrator;
+  int threads = 0;
+  double samples_per_s_1 = 0, samples_per_s_n = 0;  ///< one thread, `threads` threads
+  double cpu_utilisation = 0;        ///< CPU seconds / (wall seconds x threads) of the `threads`-thread render
+};
+
+struct BenchReport {
+  std::string cpu;
+  int cores = 0, threads = 0, repeat = 0;
+  bool quick = false;
+  double load_average_start = 0, load_average_end = 0;
+  std::vector<SceneResult> scenes;
+};
+
+/// The human-readable table (stdout).
+void print_bench_report(const BenchReport& report);
+/// The same as JSON.
+std::string bench_report_json(const BenchReport& report);
+
+
+}  // namespace lumis

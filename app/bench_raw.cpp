@@ -1,0 +1,273 @@
+// Embree's raw throughput on a scene's own BVH: the rays are made first (from the scene's camera, hit points and
+// lights), then only the Embree calls are timed, over all threads, as the renderer would issue them.
+#include <embree3/rtcore.h>
+#include <pmmintrin.h>
+#include <sys/resource.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_scheduler_observer.h>
+#include <xmmintrin.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "app/bench.h"
+#include "core/frame.h"
+#include "core/rng.h"
+#include "core/warp.h"
+
+namespace lumis {
+
+namespace {
+
+constexpr size_t kGrain = 1024;  // rays per task: large enough that scheduling costs nothing measurable
+
+// Embree wants flush-to-zero and denormals-are-zero on every thread that traces rays (as render() sets them).
+class FtzObserver : public tbb::task_scheduler_observer {
+ public:
+  explicit FtzObserver(tbb::task_arena& arena) : tbb::task_scheduler_observer(arena) { observe(true); }
+  ~FtzObserver() override { observe(false); }
+  void on_scheduler_entry(bool) override {
+    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+  }
+};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+void to_embree(const Ray& r, RTCRay& e) {
+  e.org_x = r.o.x;
+  e.org_y = r.o.y;
+  e.org_z = r.o.z;
+  e.dir_x = r.d.x;
+  e.dir_y = r.d.y;
+  e.dir_z = r.d.z;
+  e.tnear = r.tmin;
+  e.tfar = r.tmax;
+  e.time = 0;
+  e.mask = ~0u;
+  e.id = 0;
+  e.flags = 0;
+}
+
+// Lane i of a 16-wide packet.
+void to_embree16(const Ray& r, RTCRayHit16& p, int i) {
+  p.ray.org_x[i] = r.o.x;
+  p.ray.org_y[i] = r.o.y;
+  p.ray.org_z[i] = r.o.z;
+  p.ray.dir_x[i] = r.d.x;
+  p.ray.dir_y[i] = r.d.y;
+  p.ray.dir_z[i] = r.d.z;
+  p.ray.tnear[i] = r.tmin;
+  p.ray.tfar[i] = r.tmax;
+  p.ray.time[i] = 0;
+  p.ray.mask[i] = ~0u;
+  p.ray.id[i] = 0;
+  p.ray.flags[i] = 0;
+  p.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+  p.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+}
+
+enum class Query { Intersect, Occluded };
+
+double cpu_seconds() {
+  rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// One timing of fn over n rays in tasks of kGrain rays; fn returns a count (hits or occluded rays) so that the
+// fraction can be checked.
+Rate time_rays(tbb::task_arena& arena, size_t n, const std::function<size_t(size_t, size_t)>& fn,
+               double* fraction = nullptr) {
+  if (n == 0) return {};
+  std::atomic<size_t> count{0};
+  const double c0 = cpu_seconds();
+  const auto t0 = std::chrono::steady_clock::now();
+  arena.execute([&] {
+    tbb::parallel_for(size_t(0), (n + kGrain - 1) / kGrain,
+                      [&](size_t c) { count += fn(c * kGrain, std::min(n, (c + 1) * kGrain)); });
+  });
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double cpu = cpu_seconds() - c0;
+  if (fraction) *fraction = double(count.load()) / double(n);
+  return {double(n) / std::max(wall, 1e-9), double(n) / std::max(cpu, 1e-6)};
+}
+
+size_t trace1(RTCScene scene, const std::vector<Ray>& rays, size_t begin, size_t end, Query q) {
+  size_t count = 0;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  for (size_t i = begin; i < end; ++i) {
+    if (q == Query::Intersect) {
+      RTCRayHit rh;
+      to_embree(rays[i], rh.ray);
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene, &ctx, &rh);
+      count += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    } else {
+      RTCRay r;
+      to_embree(rays[i], r);
+      rtcOccluded1(scene, &ctx, &r);
+      count += r.tfar < 0;
+    }
+  }
+  return count;
+}
+
+// Packets of 16 consecutive rays (tasks are kGrain rays, a multiple of 16, so only the very last packet can be
+// partial: its tail lanes are masked off).
+size_t trace16(RTCScene scene, const std::vector<Ray>& rays, size_t begin, size_t end, Query q, bool coherent) {
+  size_t count = 0;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  alignas(64) RTCRayHit16 p;
+  alignas(64) int valid[16];
+  for (size_t i = begin; i < end; i += 16) {
+    const int lanes = int(std::min<size_t>(16, end - i));
+    for (int k = 0; k < 16; ++k) {
+      valid[k] = k < lanes ? -1 : 0;
+      to_embree16(rays[i + std::min(k, lanes - 1)], p, k);
+    }
+    if (q == Query::Intersect) {
+      rtcIntersect16(valid, scene, &ctx, &p);
+      for (int k = 0; k < lanes; ++k) count += p.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+    } else {
+      rtcOccluded16(valid, scene, &ctx, reinterpret_cast<RTCRay16*>(&p.ray));
+      for (int k = 0; k < lanes; ++k) count += p.ray.tfar[k] < 0;
+    }
+  }
+  return count;
+}
+
+}  // namespace
+
+struct RawBench::Impl {
+  const Scene& scene;
+  tbb::task_arena arena;
+  FtzObserver ftz{arena};
+  std::vector<Ray> cam, bounce, shadow;
+  Impl(const Scene& s, int threads) : scene(s), arena(std::max(1, threads)) {}
+};
+
+RawBench::~RawBench() = default;
+
+RawBench::RawBench(const Scene& scene, int width, int height, int threads, size_t n_rays)
+    : impl_(std::make_unique<Impl>(scene, threads)) {
+  // Camera rays in 4x4 pixel blocks, all samples of a block together: a packet is 16 neighbouring pixels, as a
+  // packet tracer would form them; render() visits pixels in the same tile-local order.
+  Camera camera = scene.camera;
+  camera.prepare(width, height);
+  const size_t pixels = size_t(width) * size_t(height);
+  const uint32_t spp = uint32_t(std::max<size_t>(1, (n_rays + pixels - 1) / pixels));
+  std::vector<Ray>& cam = impl_->cam;
+  cam.reserve(pixels * spp);
+  Pcg32 rng(7, 11);
+  for (int by = 0; by < height; by += 4)
+    for (int bx = 0; bx < width; bx += 4)
+      for (uint32_t s = 0; s < spp; ++s)
+        for (int y = by; y < std::min(by + 4, height); ++y)
+          for (int x = bx; x < std::min(bx + 4, width); ++x)
+            cam.push_back(camera.generate_ray({x + rng.next_float(), y + rng.next_float()}));
+
+  // Bounce and shadow rays from the points the camera rays hit, one each per hit point that can scatter, in
+  // camera-ray order (as the integrator issues them). Made in parallel with a seed per chunk.
+  const size_t chunks = (cam.size() + kGrain - 1) / kGrain;
+  std::vector<std::vector<Ray>> bounce_parts(chunks), shadow_parts(chunks);
+  impl_->arena.execute([&] {
+    tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+      Pcg32 r(hash_combine(c, 3), 5);
+      for (size_t i = c * kGrain; i < std::min(cam.size(), (c + 1) * kGrain); ++i) {
+        Hit hit;
+        if (!scene.geometry.intersect(cam[i], hit) || hit.material < 0) continue;
+        const Vec3 ng = hit.front ? hit.ng : -hit.ng;  // toward the camera
+        const Vec3 wi = Frame::from_normal(ng).to_world(sample_cosine_hemisphere({r.next_float(), r.next_float()}));
+        const Ray b = spawn_ray(hit, wi);
+        if (is_finite(b.d) && length_squared(b.d) > 0) bounce_parts[c].push_back(b);
+        const LightSampleContext ctx{hit.p, ng};
+        const std::optional<LightChoice> choice = scene.light_selector.sample(ctx, r.next_float());
+        if (!choice) continue;
+        const std::optional<LightSample> ls =
+            scene.lights[choice->index]->sample(ctx, {r.next_float(), r.next_float()});
+        if (!ls || !(ls->pdf > 0) || dot(ls->wi, ng) <= 0) continue;
+        const Ray s = std::isinf(ls->dist) ? spawn_ray(hit, ls->wi) : spawn_ray_to(hit, ls->p_light);
+        if (is_finite(s.o) && is_finite(s.d)) shadow_parts[c].push_back(s);
+      }
+    });
+  });
+  for (size_t c = 0; c < chunks; ++c) {
+    impl_->bounce.insert(impl_->bounce.end(), bounce_parts[c].begin(), bounce_parts[c].end());
+    impl_->shadow.insert(impl_->shadow.end(), shadow_parts[c].begin(), shadow_parts[c].end());
+  }
+}
+
+RawThroughput RawBench::measure() {
+  Impl& m = *impl_;
+  const RTCScene rtc = static_cast<RTCScene>(m.scene.geometry.embree_scene());
+  const std::vector<Ray>&cam = m.cam, &bounce = m.bounce, &shadow = m.shadow;
+  RawThroughput out;
+  out.camera_rays = cam.size();
+  out.bounce_rays = bounce.size();
+  out.shadow_rays = shadow.size();
+  using Range = std::function<size_t(size_t, size_t)>;
+  out.camera1 = time_rays(m.arena, cam.size(), Range([&](size_t b, size_t e) {
+                            return trace1(rtc, cam, b, e, Query::Intersect);
+                          }),
+                          &out.camera_hit_fraction);
+  out.camera16 = time_rays(m.arena, cam.size(), Range([&](size_t b, size_t e) {
+                             return trace16(rtc, cam, b, e, Query::Intersect, true);
+                           }));
+  out.bounce1 = time_rays(m.arena, bounce.size(), Range([&](size_t b, size_t e) {
+                            return trace1(rtc, bounce, b, e, Query::Intersect);
+                          }),
+                          &out.bounce_hit_fraction);
+  out.bounce16 = time_rays(m.arena, bounce.size(), Range([&](size_t b, size_t e) {
+                             return trace16(rtc, bounce, b, e, Query::Intersect, false);
+                           }));
+  out.shadow1 = time_rays(m.arena, shadow.size(), Range([&](size_t b, size_t e) {
+                            return trace1(rtc, shadow, b, e, Query::Occluded);
+                          }),
+                          &out.shadow_occluded_fraction);
+  out.shadow16 = time_rays(m.arena, shadow.size(), Range([&](size_t b, size_t e) {
+                             return trace16(rtc, shadow, b, e, Query::Occluded, false);
+                           }));
+  const Geometry& g = m.scene.geometry;
+  out.light_query = time_rays(m.arena, bounce.size(), Range([&](size_t b, size_t e) {
+                                LightHitRecord hits[64];
+                                size_t found = 0;
+                                for (size_t i = b; i < e; ++i) found += g.all_light_hits(bounce[i], hits, 64) > 0;
+                                return found;
+                              }));
+  return out;
+}
+
+RawThroughput median_raw(const std::vector<RawThroughput>& runs) {
+  if (runs.empty()) return {};
+  RawThroughput out = runs.back();
+  auto med = [&](Rate RawThroughput::*field) {
+    std::vector<double> w, c;
+    for (const RawThroughput& r : runs) {
+      w.push_back((r.*field).wall);
+      c.push_back((r.*field).cpu);
+    }
+    out.*field = {median(w), median(c)};
+  };
+  for (Rate RawThroughput::*f : {&RawThroughput::camera1, &RawThroughput::camera16, &RawThroughput::bounce1,
+                                 &RawThroughput::bounce16, &RawThroughput::shadow1, &RawThroughput::shadow16,
+                                 &RawThroughput::light_query})
+    med(f);
+  return out;
+}
+
+}  // namespace lumis

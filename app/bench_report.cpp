@@ -1,0 +1,202 @@
+// `lumis bench` output: the table on stdout and the same figures as JSON, with the targets evaluated
+// (reported, never asserted: the machine is shared and noisy).
+#include <cstdio>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "app/bench.h"
+
+namespace lumis {
+
+namespace {
+
+using Json = nlohmann::json;
+
+struct Target {
+  std::string name, scene;
+  double value = 0, bound = 0;
+  bool at_least = true;  ///< value >= bound (else value < bound)
+  bool met() const { return at_least ? value >= bound : value < bound; }
+};
+
+const VariantResult* find_variant(const SceneResult& s, const std::string& name) {
+  for (const VariantResult& v : s.variants)
+    if (v.integrator == name) return &v;
+  return nullptr;
+}
+
+double efficiency(const SceneResult& s) {
+  return s.samples_per_s_1 > 0 && s.threads > 0 ? s.samples_per_s_n / s.samples_per_s_1 / s.threads : 0;
+}
+
+std::vector<Target> targets(const BenchReport& r) {
+  std::vector<Target> out;
+  for (const SceneResult& s : r.scenes) {
+    if (!s.error.empty()) continue;
+    const bool large = s.name == "large";
+    if (s.name == "cornell-sphere" || large)
+      if (const VariantResult* v = find_variant(s, "nee_mis"))
+        out.push_back({"nee_mis rays/s over raw Embree rays/s for the same mix", s.name, v->ratio, 0.7, true});
+    if (s.threads > 1 && s.samples_per_s_1 > 0)
+      out.push_back({"thread scaling: speedup / threads (" + s.scaling_integrator + ")", s.name, efficiency(s),
+                     0.9, true});
+    if (large && s.triangles >= 1'000'000) {
+      out.push_back({"load + BVH build of the 1M-triangle glTF, seconds", s.name, s.load_seconds, 1.5, false});
+      out.push_back({"peak memory, bytes per triangle", s.name, s.bytes_per_triangle, 250, false});
+    }
+  }
+  return out;
+}
+
+double mega(double v) { return v * 1e-6; }
+
+std::string count(double v) {
+  char buf[32];
+  if (v >= 1e6) std::snprintf(buf, sizeof buf, "%.2fM", v * 1e-6);
+  else if (v >= 1e3) std::snprintf(buf, sizeof buf, "%.1fk", v * 1e-3);
+  else std::snprintf(buf, sizeof buf, "%.0f", v);
+  return buf;
+}
+
+double pct(uint64_t part, uint64_t whole) { return whole ? 100.0 * double(part) / double(whole) : 0; }
+
+}  // namespace
+
+void print_bench_report(const BenchReport& r) {
+  std::printf("lumis bench: %d threads on %d cores (%s), median of %d%s; load average %.1f -> %.1f\n", r.threads,
+              r.cores, r.cpu.c_str(), r.repeat, r.quick ? ", quick" : "", r.load_average_start,
+              r.load_average_end);
+  std::printf("Shared machines are noisy: compare the ratios (measured in the same run), not absolute rates.\n\n");
+
+  std::printf("%-28s %10s %8s %8s %9s %7s %6s\n", "scene", "triangles", "load s", "BVH s", "peak MiB", "B/tri",
+              "lights");
+  for (const SceneResult& s : r.scenes) {
+    if (!s.error.empty()) {
+      std::printf("%-28s error: %s\n", s.name.c_str(), s.error.c_str());
+      continue;
+    }
+    char bpt[16] = "-";
+    if (s.bytes_per_triangle > 0) std::snprintf(bpt, sizeof bpt, "%.0f", s.bytes_per_triangle);
+    std::printf("%-28s %10zu %8.3f %8.3f %9.1f %7s %6zu\n", s.name.c_str(), s.triangles, s.load_seconds,
+                s.bvh_seconds, double(s.peak_rss) / (1 << 20), bpt, s.lights);
+  }
+
+  std::printf("\nRaw Embree, Mrays/s (wall clock), %d threads %15s %15s %15s %8s\n", r.threads, "camera 1 / 16",
+              "bounce 1 / 16", "shadow 1 / 16", "lightq");
+  for (const SceneResult& s : r.scenes) {
+    if (!s.error.empty()) continue;
+    const RawThroughput& w = s.raw;
+    std::printf("%-43s %7.2f/%7.2f %7.2f/%7.2f %7.2f/%7.2f %8.2f\n", s.name.c_str(), mega(w.camera1.wall),
+                mega(w.camera16.wall), mega(w.bounce1.wall), mega(w.bounce16.wall), mega(w.shadow1.wall),
+                mega(w.shadow16.wall), mega(w.light_query.wall));
+  }
+
+  std::printf("\nratio = lumis rays/s over raw Embree rays/s for the same mix of rays (rtcIntersect1/rtcOccluded1;\n"
+              "  cpu: per CPU-second, insensitive to other load; cpu16: against 16-wide packets)\n");
+  std::printf("%-28s %-8s %10s %8s %6s %17s %9s %6s %6s %6s\n", "scene", "variant", "samples/s", "Mrays/s",
+              "ray/sp", "cam/bnc/shd/lq %", "raw Mr/s", "ratio", "cpu", "cpu16");
+  for (const SceneResult& s : r.scenes) {
+    if (!s.error.empty()) continue;
+    for (const VariantResult& v : s.variants) {
+      char mix[64];
+      std::snprintf(mix, sizeof mix, "%.0f/%.0f/%.0f/%.0f", pct(v.camera_rays, v.rays), pct(v.bounce_rays, v.rays),
+                    pct(v.shadow_rays, v.rays), pct(v.light_queries, v.rays));
+      std::printf("%-28s %-8s %10s %8.2f %6.2f %17s %9.2f %6.2f %6.2f %6.2f\n", s.name.c_str(),
+                  v.integrator.c_str(), count(v.samples_per_s).c_str(), mega(v.rays_per_s),
+                  v.samples ? double(v.rays) / double(v.samples) : 0.0, mix, mega(v.raw_mix_rays_per_s), v.ratio,
+                  v.ratio_cpu, v.ratio_cpu_packets);
+    }
+  }
+
+  std::printf("\n%-28s %-8s %12s %12s %8s %10s %12s\n", "thread scaling", "variant", "1 thread", "N threads",
+              "speedup", "/ threads", "cpu share");
+  for (const SceneResult& s : r.scenes) {
+    if (!s.error.empty()) continue;
+    std::printf("%-28s %-8s %12s %12s %8.2f %10.2f %12.2f\n", s.name.c_str(), s.scaling_integrator.c_str(),
+                count(s.samples_per_s_1).c_str(), count(s.samples_per_s_n).c_str(),
+                s.samples_per_s_1 > 0 ? s.samples_per_s_n / s.samples_per_s_1 : 0.0, efficiency(s),
+                s.cpu_utilisation);
+  }
+
+  std::printf("\nTargets (reported, not enforced):\n");
+  for (const Target& t : targets(r))
+    std::printf("  %-4s %-60s %-16s %8.3f (%s %g)\n", t.met() ? "met" : "MISS", t.name.c_str(), t.scene.c_str(),
+                t.value, t.at_least ? ">=" : "<", t.bound);
+}
+
+std::string bench_report_json(const BenchReport& r) {
+  Json doc;
+  doc["machine"] = {{"cpu", r.cpu}, {"cores", r.cores}, {"load_average_start", r.load_average_start},
+                    {"load_average_end", r.load_average_end}};
+  doc["settings"] = {{"threads", r.threads}, {"repeat", r.repeat}, {"quick", r.quick}};
+  Json scenes = Json::array();
+  for (const SceneResult& s : r.scenes) {
+    Json j = {{"name", s.name}, {"path", s.path}};
+    if (!s.error.empty()) {
+      j["error"] = s.error;
+      scenes.push_back(j);
+      continue;
+    }
+    j["triangles"] = s.triangles;
+    j["lights"] = s.lights;
+    j["width"] = s.width;
+    j["height"] = s.height;
+    j["spp"] = s.spp;
+    j["file_bytes"] = s.file_bytes;
+    if (s.generate_seconds > 0) j["generate_seconds"] = s.generate_seconds;
+    j["load_seconds"] = s.load_seconds;
+    j["bvh_build_seconds"] = s.bvh_seconds;
+    j["memory"] = {{"baseline_rss_bytes", s.baseline_rss}, {"peak_rss_bytes", s.peak_rss},
+                   {"peak_reset_per_scene", s.peak_reset}, {"bytes_per_triangle", s.bytes_per_triangle}};
+    const RawThroughput& w = s.raw;
+    j["raw_rays_per_s"] = {{"camera_intersect1", w.camera1.wall},  {"camera_intersect16", w.camera16.wall},
+                           {"bounce_intersect1", w.bounce1.wall},  {"bounce_intersect16", w.bounce16.wall},
+                           {"shadow_occluded1", w.shadow1.wall},   {"shadow_occluded16", w.shadow16.wall},
+                           {"light_query", w.light_query.wall},    {"camera_rays", w.camera_rays},
+                           {"bounce_rays", w.bounce_rays},    {"shadow_rays", w.shadow_rays},
+                           {"camera_hit_fraction", w.camera_hit_fraction},
+                           {"bounce_hit_fraction", w.bounce_hit_fraction},
+                           {"shadow_occluded_fraction", w.shadow_occluded_fraction}};
+    j["raw_rays_per_cpu_s"] = {{"camera_intersect1", w.camera1.cpu},  {"camera_intersect16", w.camera16.cpu},
+                               {"bounce_intersect1", w.bounce1.cpu},  {"bounce_intersect16", w.bounce16.cpu},
+                               {"shadow_occluded1", w.shadow1.cpu},   {"shadow_occluded16", w.shadow16.cpu},
+                               {"light_query", w.light_query.cpu}};
+    Json vs = Json::array();
+    for (const VariantResult& v : s.variants)
+      vs.push_back({{"integrator", v.integrator},
+                    {"seconds", v.seconds},
+                    {"cpu_seconds", v.cpu_seconds},
+                    {"samples", v.samples},
+                    {"rays", v.rays},
+                    {"rays_by_kind",
+                     {{"camera", v.camera_rays}, {"bounce", v.bounce_rays}, {"shadow", v.shadow_rays},
+                      {"light_query", v.light_queries}}},
+                    {"samples_per_s", v.samples_per_s},
+                    {"rays_per_s", v.rays_per_s},
+                    {"raw_mix_rays_per_s", v.raw_mix_rays_per_s},
+                    {"raw_mix_packet_rays_per_s", v.raw_mix_packet_rays_per_s},
+                    {"ratio_to_raw", v.ratio},
+                    {"ratio_to_raw_packets", v.ratio_packets},
+                    {"ratio_to_raw_cpu", v.ratio_cpu},
+                    {"ratio_to_raw_packets_cpu", v.ratio_cpu_packets}});
+    j["variants"] = vs;
+    j["thread_scaling"] = {{"integrator", s.scaling_integrator},
+                           {"threads", s.threads},
+                           {"samples_per_s_1", s.samples_per_s_1},
+                           {"samples_per_s_n", s.samples_per_s_n},
+                           {"speedup", s.samples_per_s_1 > 0 ? s.samples_per_s_n / s.samples_per_s_1 : 0.0},
+                           {"efficiency", efficiency(s)},
+                           {"cpu_utilisation", s.cpu_utilisation}};
+    scenes.push_back(j);
+  }
+  doc["scenes"] = scenes;
+  Json ts = Json::array();
+  for (const Target& t : targets(r))
+    ts.push_back({{"name", t.name}, {"scene", t.scene}, {"value", t.value}, {"bound", t.bound},
+                  {"at_least", t.at_least}, {"met", t.met()}});
+  doc["targets"] = ts;
+  return doc.dump(2);
+}
+
+}  // namespace lumis

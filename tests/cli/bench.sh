@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# Smoke test of `lumis bench`: tiny settings (--quick: cornell-sphere and a 20k-triangle generated room at 32x32,
+# 1 spp), the JSON report parses and has every field, the rays split by kind add up, and --write-large-scene writes
+# a glTF that `lumis render` loads. Speeds are not checked (shared machines). Usage: bench.sh path/to/lumis
+set -uo pipefail
+LUMIS=${1:?usage: bench.sh path/to/lumis}
+SRC=${LUMIS_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+[ -f "$SRC/scenes/cornell-sphere.json" ] || { echo "skip: scenes missing"; exit 77; }
+command -v python3 >/dev/null || { echo "skip: python3 needed to check the JSON"; exit 77; }
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+
+"$LUMIS" bench --quick --threads 2 --json "$T/bench.json" >"$T/out" 2>"$T/err" ||
+  { cat "$T/out" "$T/err"; fail "lumis bench --quick exited $?"; }
+grep -q "Raw Embree" "$T/out" || fail "no raw-throughput table: $(cat "$T/out")"
+grep -q "Targets" "$T/out" || fail "no targets section: $(cat "$T/out")"
+
+python3 - "$T/bench.json" <<'PY' || fail "JSON report: $(cat "$T/bench.json")"
+import json, sys
+doc = json.load(open(sys.argv[1]))
+for k in ("cpu", "cores", "load_average_start"):
+    assert k in doc["machine"], k
+assert doc["settings"]["quick"] is True and doc["settings"]["threads"] == 2
+names = [s["name"] for s in doc["scenes"]]
+assert names == ["cornell-sphere", "large"], names
+variants = {"uniform", "bsdf", "light", "mis", "nee_mis"}
+for s in doc["scenes"]:
+    assert "error" not in s, s
+    for k in ("triangles", "lights", "load_seconds", "bvh_build_seconds", "memory", "raw_rays_per_s", "variants",
+              "thread_scaling", "file_bytes"):
+        assert k in s, (s["name"], k)
+    assert s["load_seconds"] > 0 and s["bvh_build_seconds"] > 0
+    assert s["memory"]["peak_rss_bytes"] > 0
+    raw = s["raw_rays_per_s"]
+    for k in ("camera_intersect1", "camera_intersect16", "bounce_intersect1", "bounce_intersect16",
+              "shadow_occluded1", "shadow_occluded16", "light_query"):
+        assert raw[k] > 0, (s["name"], k, raw[k])
+    assert {v["integrator"] for v in s["variants"]} == variants
+    for v in s["variants"]:
+        kinds = v["rays_by_kind"]
+        assert sum(kinds.values()) == v["rays"], (s["name"], v)
+        assert kinds["camera"] == v["samples"] == 32 * 32, (s["name"], v)
+        for k in ("samples_per_s", "rays_per_s", "raw_mix_rays_per_s", "ratio_to_raw", "ratio_to_raw_packets"):
+            assert v[k] > 0, (s["name"], v["integrator"], k)
+    nee = next(v for v in s["variants"] if v["integrator"] == "nee_mis")
+    mis = next(v for v in s["variants"] if v["integrator"] == "mis")
+    assert nee["rays_by_kind"]["shadow"] > 0 and nee["rays_by_kind"]["light_query"] == 0
+    assert mis["rays_by_kind"]["light_query"] > 0 and mis["rays_by_kind"]["shadow"] == 0
+    ts = s["thread_scaling"]
+    assert ts["integrator"] == "nee_mis" and ts["samples_per_s_1"] > 0 and ts["speedup"] > 0
+large = doc["scenes"][1]
+assert large["triangles"] >= 20000 and large["generate_seconds"] > 0
+assert large["raw_rays_per_s"]["bounce_hit_fraction"] > 0.99, "the generated room must be closed"
+assert any(t["scene"] == "cornell-sphere" for t in doc["targets"])
+PY
+
+# The generated scene on its own, through the real loader.
+"$LUMIS" bench --write-large-scene "$T/large.glb" --large-triangles 5000 2>"$T/err" || fail "write: $(cat "$T/err")"
+[ -s "$T/large.glb" ] || fail "no .glb written"
+"$LUMIS" render "$T/large.glb" --width 16 --height 16 --spp 1 -q -o "$T/large.png" 2>"$T/err" ||
+  fail "render of the generated scene: $(cat "$T/err")"
+"$LUMIS" bench "$T/missing.json" --quick >"$T/out" 2>"$T/err"
+[ $? = 1 ] || fail "a missing scene should exit 1"
+grep -q "missing.json" "$T/err" || fail "missing-scene message: $(cat "$T/err")"
+echo "ok"
