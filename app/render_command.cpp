@@ -1,4 +1,5 @@
 // `lumis render [SCENE] [-o OUT] [options]`.
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -6,7 +7,9 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <limits>
 
 #include "app/cli.h"
 #include "app/scene_error.h"
@@ -27,6 +30,53 @@ std::string format_count(double v) {
   else if (v >= 1e6) std::snprintf(buf, sizeof buf, "%.2fM", v / 1e6);
   else if (v >= 1e3) std::snprintf(buf, sizeof buf, "%.1fk", v / 1e3);
   else std::snprintf(buf, sizeof buf, "%.0f", v);
+  return buf;
+}
+
+// What a render of w x h pixels still allocates after the scene is loaded: the film's accumulators (88 bytes of
+// sums, AOVs and counts per pixel, rounded up) plus the float image handed to the writer and the writer's copy.
+uint64_t render_memory_estimate(int width, int height, int channels) {
+  const uint64_t pixels = static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
+  return pixels * (100 + 2 * 4 * static_cast<uint64_t>(channels));
+}
+
+// Bytes this process may still allocate: MemAvailable from /proc/meminfo, lowered by an address-space limit
+// (ulimit -v) minus what is already mapped. Unknown parts count as unlimited.
+uint64_t available_memory(std::string& source) {
+  uint64_t avail = std::numeric_limits<uint64_t>::max();
+  source = "";
+  std::ifstream meminfo("/proc/meminfo");
+  for (std::string key; meminfo >> key;) {
+    uint64_t kb = 0;
+    meminfo >> kb;
+    if (key == "MemAvailable:") {
+      avail = kb * 1024;
+      source = "MemAvailable in /proc/meminfo";
+    }
+    meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  }
+  rlimit lim{};
+  if (getrlimit(RLIMIT_AS, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY) {
+    uint64_t mapped = 0;
+    std::ifstream status("/proc/self/status");
+    for (std::string key; status >> key;) {
+      if (key == "VmSize:") status >> mapped;
+      status.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    }
+    const uint64_t limit = lim.rlim_cur, used = mapped * 1024;
+    const uint64_t left = limit > used ? limit - used : 0;
+    if (left < avail) {
+      avail = left;
+      source = "the address-space limit (ulimit -v) less what is mapped";
+    }
+  }
+  return avail;
+}
+
+std::string format_bytes(uint64_t b) {
+  char buf[32];
+  if (b >= (uint64_t(1) << 30)) std::snprintf(buf, sizeof buf, "%.1f GiB", b / double(uint64_t(1) << 30));
+  else std::snprintf(buf, sizeof buf, "%.1f MiB", b / double(uint64_t(1) << 20));
   return buf;
 }
 
@@ -71,7 +121,21 @@ int run_render(const RenderArgs& args) {
     return 2;
   }
 
-  Film film(s.width, s.height, FilmOptions{args.aov_albedo, args.aov_normal, args.aov_depth, true});
+  const FilmOptions film_options{args.aov_albedo, args.aov_normal, args.aov_depth, true};
+  {
+    // Fail before allocating rather than being killed half-way: an absurd resolution is an input error.
+    const int channels = 6 + 3 * args.aov_albedo + 3 * args.aov_normal + args.aov_depth;
+    const uint64_t need = render_memory_estimate(s.width, s.height, channels);
+    std::string source;
+    const uint64_t have = available_memory(source);
+    if (need > have) {
+      std::cerr << "lumis: " << scene_path << ": a " << s.width << " x " << s.height << " render needs about "
+                << format_bytes(need) << " of memory (film and image), but only " << format_bytes(have)
+                << " is available (" << source << "); lower --width/--height\n";
+      return 1;
+    }
+  }
+  Film film(s.width, s.height, film_options);
   RenderOptions ro;
   ro.spp = s.time_budget > 0 && !args.overrides.spp ? (1u << 20) : s.spp;
   ro.time_budget = s.time_budget;
@@ -90,26 +154,37 @@ int run_render(const RenderArgs& args) {
   }
   std::signal(SIGINT, on_sigint);
   const RenderStats st = render(*scene, *integrator, film, ro);
-  std::signal(SIGINT, SIG_DFL);
   if (tty) std::fprintf(stderr, "\n");
 
   try {
     WriteOptions wo;
     wo.exposure = s.exposure;
+    // What the image is, so that a partial (interrupted or time-limited) render says how far it got.
+    wo.metadata = {{"lumis:spp", std::to_string(st.spp)},
+                   {"lumis:integrator", integrator->name()},
+                   {"lumis:seed", std::to_string(s.seed)},
+                   {"lumis:scene", scene_path},
+                   {"lumis:dropped_samples", std::to_string(st.dropped)},
+                   {"lumis:stopped", !st.stopped_early ? "complete" : g_interrupted ? "interrupted" : "time budget"},
+                   {"Software", std::string("lumis ") + LUMIS_VERSION}};
     write_image(out, film.to_image(), wo);
   } catch (const std::exception& e) {
+    std::signal(SIGINT, SIG_DFL);
     std::cerr << "lumis: " << e.what() << "\n";
     return 1;
   }
+  // Only now: a second Ctrl-C during the write would otherwise leave a temporary file behind.
+  std::signal(SIGINT, SIG_DFL);
   if (!args.quiet) {
     std::fprintf(stderr, "%s: %dx%d, %s, %u spp in %.2f s, %s samples/s, %s rays/s%s -> %s\n", scene_path.c_str(),
                  s.width, s.height, integrator->name(), st.spp, st.seconds,
                  format_count(st.samples / std::max(st.seconds, 1e-9)).c_str(),
                  format_count(st.rays / std::max(st.seconds, 1e-9)).c_str(),
                  st.stopped_early ? (g_interrupted ? " (interrupted)" : " (time budget)") : "", out.c_str());
-    if (st.dropped) std::fprintf(stderr, "lumis: warning: %llu non-finite samples dropped\n",
-                                 static_cast<unsigned long long>(st.dropped));
   }
+  // A warning even with -q: dropped samples bias the image.
+  if (st.dropped) std::fprintf(stderr, "lumis: warning: %llu non-finite samples dropped\n",
+                               static_cast<unsigned long long>(st.dropped));
   return g_interrupted ? 130 : 0;
 }
 

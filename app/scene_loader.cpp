@@ -90,8 +90,8 @@ void parse_render(const JsonNode& node, RenderSettings& s) {
   if (auto v = node.find("exposure")) s.exposure = v->as_float();
 }
 
-std::unique_ptr<Scene> load_json_scene(const std::string& path) {
-  const Json doc = parse_json_text(read_text(path), path);
+std::unique_ptr<Scene> load_json_scene(const std::string& text, const std::string& path) {
+  const Json doc = parse_json_text(text, path);
   const JsonNode root(doc, "", path);
   root.expect_object({"version", "camera", "film", "render", "materials", "shapes", "lights"});
   if (auto v = root.find("version")) {
@@ -167,9 +167,13 @@ std::unique_ptr<Scene> load_scene(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec)) throw SceneError(path, "", "no such scene file");
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".json") return load_json_scene(path);
+  if (ext == ".json") return load_json_scene(read_text(path), path);
   if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path);
   throw SceneError(path, "", "unknown scene file type \"" + ext + "\"; expected .json, .gltf or .glb");
+}
+
+std::unique_ptr<Scene> load_scene_text(const std::string& text, const std::string& path) {
+  return load_json_scene(text, path);
 }
 
 }  // namespace lumis

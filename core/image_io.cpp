@@ -51,12 +51,16 @@ void write_to(const std::string& final_path, const std::string& tmp, const Image
   const char* format = kind == Kind::Exr ? "openexr" : kind == Kind::Hdr ? "hdr" : kind == Kind::Png ? "png" : "jpeg";
   auto out = OIIO::ImageOutput::create(format);
   if (!out) fail(final_path, "no " + std::string(format) + " writer: " + OIIO::geterror());
+  auto add_metadata = [&](OIIO::ImageSpec& spec) {
+    for (const auto& [key, value] : options.metadata) spec.attribute(key, value);
+  };
 
   if (kind == Kind::Exr) {
     OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
     spec.channelnames = image.channel_names;
     spec.alpha_channel = image.channel_index("A");
     spec.attribute("compression", "zip");
+    add_metadata(spec);
     if (!out->open(tmp, spec)) fail(final_path, out->geterror());
     if (!out->write_image(OIIO::TypeDesc::FLOAT, image.data.data())) fail(final_path, out->geterror());
   } else if (kind == Kind::Hdr) {
@@ -66,6 +70,7 @@ void write_to(const std::string& final_path, const std::string& tmp, const Image
       for (int k = 0; k < 3; ++k) rgb[i * 3 + k] = std::max(c[k], 0.0f);  // RGBE cannot hold negatives
     }
     OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT);
+    add_metadata(spec);
     if (!out->open(tmp, spec)) fail(final_path, out->geterror());
     if (!out->write_image(OIIO::TypeDesc::FLOAT, rgb.data())) fail(final_path, out->geterror());
   } else {
@@ -82,6 +87,7 @@ void write_to(const std::string& final_path, const std::string& tmp, const Image
     }
     OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
+    add_metadata(spec);
     if (kind == Kind::Jpg) spec.attribute("Compression", "jpeg:95");
     if (!out->open(tmp, spec)) fail(final_path, out->geterror());
     if (!out->write_image(OIIO::TypeDesc::UINT8, rgb.data())) fail(final_path, out->geterror());

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/image.h"
 
@@ -13,6 +15,9 @@ Image read_image(const std::string& path, bool srgb_to_linear = false);
 
 struct WriteOptions {
   float exposure = 0;  ///< stops, applied to display formats (png/jpg) only
+  /// String attributes stored in the file's header ("lumis:spp" = "64", ...): EXR keeps them all; other formats
+  /// keep what their writer supports (PNG text chunks) and drop the rest.
+  std::vector<std::pair<std::string, std::string>> metadata;
 };
 
 /// Write an image, format by extension: .exr (linear half/float, all channels), .hdr, .png/.jpg (first three

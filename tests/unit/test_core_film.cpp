@@ -1,0 +1,45 @@
+// Film: non-finite samples (NaN, +Inf, -Inf, and values that overflow when summed in float elsewhere) are dropped
+// and counted per pixel, and never reach the mean, the variance or the sample count. Deterministic.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/film.h"
+
+namespace lumis {
+namespace {
+
+TEST(Film, DropsAndCountsNonFiniteSamples) {
+  Film film(2, 1);
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  film.add(0, 0, Color(1.0f));
+  film.add(0, 0, Color(nan, 0, 0));
+  film.add(0, 0, Color(0, inf, 0));
+  film.add(0, 0, Color(0, 0, -inf));
+  film.add(0, 0, Color(3.0f));
+  film.add(0, 0, Color(3e38f) * 10.0f);  // overflows to +Inf before it reaches the film
+  film.add(1, 0, Color(nan));
+  EXPECT_EQ(film.dropped(), 5u);
+  EXPECT_EQ(film.count(0, 0), 2u);
+  EXPECT_EQ(film.count(1, 0), 0u);
+  EXPECT_FLOAT_EQ(film.mean(0, 0)[0], 2.0f);
+  EXPECT_FLOAT_EQ(film.mean(0, 0)[2], 2.0f);
+  // Sample variance of {1, 3} is 2; of the mean, 1.
+  EXPECT_FLOAT_EQ(film.variance_of_mean(0, 0)[1], 1.0f);
+  // A pixel whose every sample was dropped is black, not NaN.
+  EXPECT_EQ(film.mean(1, 0)[0], 0.0f);
+  for (float v : film.to_image().data) EXPECT_TRUE(std::isfinite(v));
+}
+
+TEST(Film, AovsIgnoreNonFiniteValues) {
+  Film film(1, 1, FilmOptions{true, true, true, true});
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  AovSample good{Color(0.5f), Vec3(0, 0, 1), 2.0f}, bad{Color(nan), Vec3(nan, 0, 1), nan};
+  film.add(0, 0, Color(1.0f), &good);
+  film.add(0, 0, Color(1.0f), &bad);
+  for (float v : film.to_image().data) EXPECT_TRUE(std::isfinite(v));
+}
+
+}  // namespace
+}  // namespace lumis
