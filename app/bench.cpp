@@ -251,15 +251,20 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   raw.reset();
   res.raw = median_raw(raws);
   for (size_t i = 0; i < variants.size(); ++i) res.variants.push_back(aggregate(runs[i], raws, res.raw));
-  std::vector<double> single_rates, utilisation;
+  std::vector<double> single_rates, utilisation, cpu_eff;
   for (const VariantResult& v : single) single_rates.push_back(double(v.samples) / std::max(v.seconds, 1e-12));
   res.samples_per_s_1 = median(single_rates);
   for (size_t i = 0; i < variants.size(); ++i) {
     if (variants[i] != res.scaling_integrator) continue;
     res.samples_per_s_n = res.variants[i].samples_per_s;
-    for (const VariantResult& v : runs[i]) utilisation.push_back(v.cpu_seconds / std::max(v.seconds * threads, 1e-12));
+    for (size_t r = 0; r < runs[i].size(); ++r) {
+      const VariantResult& v = runs[i][r];
+      utilisation.push_back(v.cpu_seconds / std::max(v.seconds * threads, 1e-12));
+      if (v.cpu_seconds > 0 && single[r].cpu_seconds > 0) cpu_eff.push_back(single[r].cpu_seconds / v.cpu_seconds);
+    }
   }
   res.cpu_utilisation = median(utilisation);
+  res.cpu_efficiency = median(cpu_eff);
   if (res.triangles >= 10000 && res.peak_rss > res.baseline_rss)
     res.bytes_per_triangle = double(res.peak_rss - res.baseline_rss) / double(res.triangles);
 

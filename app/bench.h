@@ -55,6 +55,7 @@ struct RawThroughput {
   Rate bounce1, bounce16;   ///< rtcIntersect1 / rtcIntersect16 (incoherent)
   Rate shadow1, shadow16;   ///< rtcOccluded1 / rtcOccluded16
   Rate light_query;         ///< Geometry::all_light_hits on the bounce rays (the `mis` density query)
+  Rate bounce_lumis;        ///< Geometry::intersect on the bounce rays: rtcIntersect1 plus lumis's Hit record
   size_t camera_rays = 0, bounce_rays = 0, shadow_rays = 0;
   double camera_hit_fraction = 0, bounce_hit_fraction = 0, shadow_occluded_fraction = 0;
 };
@@ -109,6 +110,9 @@ struct SceneResult {
   int threads = 0;
   double samples_per_s_1 = 0, samples_per_s_n = 0;  ///< one thread, `threads` threads
   double cpu_utilisation = 0;        ///< CPU seconds / (wall seconds x threads) of the `threads`-thread render
+  /// Samples per CPU-second with `threads` threads over the same with one: the parallel overhead alone, which a
+  /// shared machine cannot hide (wall-clock speedup needs idle cores).
+  double cpu_efficiency = 0;
 };
 
 struct BenchReport {

@@ -243,6 +243,14 @@ RawThroughput RawBench::measure() {
                              return trace16(rtc, shadow, b, e, Query::Occluded, false);
                            }));
   const Geometry& g = m.scene.geometry;
+  out.bounce_lumis = time_rays(m.arena, bounce.size(), Range([&](size_t b, size_t e) {
+                                 size_t found = 0;
+                                 for (size_t i = b; i < e; ++i) {
+                                   Hit h;
+                                   found += g.intersect(bounce[i], h);
+                                 }
+                                 return found;
+                               }));
   out.light_query = time_rays(m.arena, bounce.size(), Range([&](size_t b, size_t e) {
                                 LightHitRecord hits[64];
                                 size_t found = 0;
@@ -265,7 +273,7 @@ RawThroughput median_raw(const std::vector<RawThroughput>& runs) {
   };
   for (Rate RawThroughput::*f : {&RawThroughput::camera1, &RawThroughput::camera16, &RawThroughput::bounce1,
                                  &RawThroughput::bounce16, &RawThroughput::shadow1, &RawThroughput::shadow16,
-                                 &RawThroughput::light_query})
+                                 &RawThroughput::light_query, &RawThroughput::bounce_lumis})
     med(f);
   return out;
 }
