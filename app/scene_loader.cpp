@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -21,6 +22,34 @@ namespace {
 
 constexpr int kMaxResolution = 16384;  // per side; 16384^2 = 2^28 pixels, about 3 GiB of float RGB accumulators
 constexpr int kGltfImageWidth = 512;
+// Embree asserts on rays whose origin lies beyond about 1.8e18 in any coordinate, and products of two lengths
+// (cross products, squared distances) must fit in float: every coordinate of the geometry and the camera stays
+// within this many scene units of the origin (the framing camera stands about 6 extents away).
+constexpr float kMaxCoordinate = 1e15f;
+
+std::string format_number(float v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+/// Reject geometry or a given camera (at `camera_location`; empty for a framing camera) too far from the origin
+/// for float arithmetic (see kMaxCoordinate).
+void check_extent(const Scene& scene, const std::string& path, const std::string& camera_location) {
+  const Bounds3 b = scene.geometry.bounds();
+  if (!b.empty()) {
+    const float extent = std::max(max_component(abs(b.lo)), max_component(abs(b.hi)));
+    if (!(extent <= kMaxCoordinate))
+      throw SceneError(path, "", "the geometry reaches " + format_number(extent) +
+                                     " scene units from the origin; coordinates must stay within " +
+                                     format_number(kMaxCoordinate) + " (scale the scene down)");
+  }
+  // A framing camera (no camera location) stands within about 6 extents: only a given one needs the check.
+  if (!camera_location.empty() && !(max_component(abs(scene.camera.from)) <= kMaxCoordinate))
+    throw SceneError(path, camera_location, "the camera is " + format_number(max_component(abs(scene.camera.from))) +
+                                                " scene units from the origin; coordinates must stay within " +
+                                                format_number(kMaxCoordinate));
+}
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -117,6 +146,7 @@ std::unique_ptr<Scene> load_json_scene(const std::string& text, const std::strin
   } else {
     scene->camera = frame_bounds(builder.bounds(), float(scene->settings.width) / float(scene->settings.height));
   }
+  check_extent(*scene, path, root.has("camera") ? "/camera/from" : "");
   scene->finalize();
   return scene;
 }
@@ -156,6 +186,7 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path) {
   scene->camera = gltf.camera ? *gltf.camera
                               : frame_bounds(gltf.bounds.empty() ? builder.bounds() : gltf.bounds,
                                              float(scene->settings.width) / float(scene->settings.height));
+  check_extent(*scene, path, gltf.camera ? "camera" : "");
   scene->finalize();
   return scene;
 }

@@ -136,6 +136,15 @@ case("json_mesh_overflow", ".json",
      dump(scene(shapes=[{"type": "mesh", "positions": [[0, 0, 0], [1e30, 0, 0], [0, 1e30, 0]], "indices": [0, 1, 2],
                          "material": "grey", "transform": {"scale": 1e30}}])), "/shapes/0/transform: the transformed positions are not finite")
 
+# Beyond float arithmetic: Embree aborts on rays from beyond ~1.8e18 (a camera at 1e19 crashed lumis).
+case("json_camera_far", ".json", dump(scene(camera={"from": [0, 0, 1e19], "to": [0, 0, 0]})),
+     "/camera/from: the camera is 1e+19 scene units from the origin")
+case("json_sphere_beyond_float", ".json", dump(scene(camera=None, shapes=[sphere(center=[3e38, 0, 0], radius=3e38)])),
+     "coordinates must stay within 1e+15")
+case("json_quad_far", ".json",
+     dump(scene(shapes=[{"type": "quad", "origin": [2e15, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0],
+                         "material": "grey"}])), "the geometry reaches 2e+15")
+
 # Empty scenes.
 case("json_empty_object", ".json", "{}\n", "scene is empty")
 case("json_empty_arrays", ".json", dump(scene(shapes=[], lights=[])), "scene is empty")
@@ -299,6 +308,12 @@ case("gltf_inf_position", ".gltf", embed(*variant(lambda d: None, positions=[(0,
      "not finite")
 case("gltf_huge_translation", ".gltf", embed(*variant(set_path(["nodes", 0, "translation"], [1e300, 0, 0]))),
      "not finite")
+# Found by fuzz_gltf: one vertex at -7.85e25 (finite) put the framing camera beyond Embree's ray range (|origin| up
+# to 1.8e18), an abort in rtcIntersect1 once the BVH holds any valid triangle. Coordinates are limited to 1e15.
+case("gltf_huge_vertex", ".gltf",
+     embed(*variant(lambda d: None, positions=[(0, 0, 0), (1, 0, 0), (0, 1, 0), (0.5, -7.85376861999771e+25, 6.4e-18)],
+                    indices=(0, 1, 2, 0, 1, 3))),
+     "coordinates must stay within 1e+15")
 # Degenerate triangles (repeated and collinear corners) load and render; only the good one is visible.
 case("gltf_degenerate_triangles", ".gltf",
      embed(*variant(lambda d: None, positions=[(0, 0, 0), (1, 0, 0), (0, 1, 0), (2, 0, 0)],
