@@ -6,7 +6,7 @@
 namespace lumis {
 
 void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
-  cmd.add_option("--spp", o.spp, "Samples per pixel")->check(CLI::PositiveNumber);
+  cmd.add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1u, 1u << 30));
   cmd.add_option("--integrator", o.integrator, "uniform | bsdf | light | mis | nee_mis");
   cmd.add_option("--max-depth", o.max_depth, "Scattering vertices per path (1 = direct lighting only)")
       ->check(CLI::Range(1, 1024));
@@ -23,7 +23,7 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
       ->check(CLI::Range(0.0f, 1.0f));
   cmd.add_option("--uniform-measure", o.uniform_measure, "theta-phi | solid-angle (for --integrator uniform)");
   cmd.add_option("--time", o.time, "Stop after this many seconds (writes what was rendered)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1e-3f, 1e7f));
   cmd.add_option("--exposure", o.exposure, "Exposure in stops for PNG/JPG output");
 }
 

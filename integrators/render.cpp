@@ -9,6 +9,7 @@
 #include <pmmintrin.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <thread>
@@ -55,12 +56,17 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   uint32_t done = 0;
   uint32_t pass = 1;  // samples per pixel in the next pass; grows so that passes take about half a second
   const uint64_t pixels = static_cast<uint64_t>(width) * height;
+  std::atomic<int> pass_sync{0};
   while (done < spp) {
     if (options.cancel && options.cancel->load()) break;
     const uint32_t begin = done, end = std::min(spp, done + pass);
     const auto pass_start = std::chrono::steady_clock::now();
+    // An explicit release/acquire handshake around each pass: TBB's join is invisible to ThreadSanitizer (TBB is
+    // not instrumented), and without it the main thread's reuse of these locals looks like a race.
+    pass_sync.store(0, std::memory_order_release);
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<int>(0, n_tiles, 1), [&](const tbb::blocked_range<int>& r) {
+        pass_sync.load(std::memory_order_acquire);
         PathCounters& local = counters.local();
         Sampler sampler(sampler_type, spp, seed);
         for (int tile = r.begin(); tile < r.end(); ++tile) {
@@ -77,8 +83,10 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
                 film.add(x, y, l, &aov);
               }
         }
+        pass_sync.fetch_add(1, std::memory_order_release);
       });
     });
+    pass_sync.load(std::memory_order_acquire);
     done = end;
     stats.samples += pixels * (end - begin);
     const double pass_seconds = seconds_since(pass_start);

@@ -59,6 +59,7 @@ stage_asan() {
   ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:strict_string_checks=1} \
     LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$(pwd)/scripts/lsan.supp:print_suppressions=0} \
     UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
+    LUMIS_REGRESSION_SPP_SCALE=${LUMIS_REGRESSION_SPP_SCALE:-0.25} \
     ctest --test-dir build-asan --output-on-failure -j "$jobs" -E "$asan_exclude" 2>&1 | tee "$log/asan.txt"
   local code=${PIPESTATUS[0]}
   ctest_counts "$log/asan.txt"
