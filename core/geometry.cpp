@@ -49,6 +49,25 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+RTCRayHit to_embree(const Ray& ray) {
+  RTCRayHit rh;
+  rh.ray.org_x = ray.o.x;
+  rh.ray.org_y = ray.o.y;
+  rh.ray.org_z = ray.o.z;
+  rh.ray.dir_x = ray.d.x;
+  rh.ray.dir_y = ray.d.y;
+  rh.ray.dir_z = ray.d.z;
+  rh.ray.tnear = ray.tmin;
+  rh.ray.tfar = ray.tmax;
+  rh.ray.time = 0;
+  rh.ray.mask = ~0u;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
 void embree_error(void*, RTCError code, const char* str) {
   std::fprintf(stderr, "lumis: embree error %d: %s\n", static_cast<int>(code), str ? str : "");
 }
@@ -207,21 +226,7 @@ bool Geometry::intersect(const Ray& ray, Hit& hit) const {
   if (!ray_is_valid(ray)) return false;
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  RTCRayHit rh;
-  rh.ray.org_x = ray.o.x;
-  rh.ray.org_y = ray.o.y;
-  rh.ray.org_z = ray.o.z;
-  rh.ray.dir_x = ray.d.x;
-  rh.ray.dir_y = ray.d.y;
-  rh.ray.dir_z = ray.d.z;
-  rh.ray.tnear = ray.tmin;
-  rh.ray.tfar = ray.tmax;
-  rh.ray.time = 0;
-  rh.ray.mask = ~0u;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = to_embree(ray);
   rtcIntersect1(impl_->scene, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit.t = rh.ray.tfar;
@@ -235,19 +240,7 @@ bool Geometry::occluded(const Ray& ray) const {
   if (!ray_is_valid(ray)) return true;
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  RTCRay r;
-  r.org_x = ray.o.x;
-  r.org_y = ray.o.y;
-  r.org_z = ray.o.z;
-  r.dir_x = ray.d.x;
-  r.dir_y = ray.d.y;
-  r.dir_z = ray.d.z;
-  r.tnear = ray.tmin;
-  r.tfar = ray.tmax;
-  r.time = 0;
-  r.mask = ~0u;
-  r.id = 0;
-  r.flags = 0;
+  RTCRay r = to_embree(ray).ray;
   rtcOccluded1(impl_->scene, &ctx, &r);
   return r.tfar < 0;  // Embree sets tfar = -inf on an occluded ray
 }
@@ -281,21 +274,7 @@ int Geometry::all_light_hits(const Ray& ray, LightHitRecord* out, int max_hits) 
   ctx.out = out;
   ctx.max_hits = max_hits;
   ctx.count = 0;
-  RTCRayHit rh;
-  rh.ray.org_x = ray.o.x;
-  rh.ray.org_y = ray.o.y;
-  rh.ray.org_z = ray.o.z;
-  rh.ray.dir_x = ray.d.x;
-  rh.ray.dir_y = ray.d.y;
-  rh.ray.dir_z = ray.d.z;
-  rh.ray.tnear = ray.tmin;
-  rh.ray.tfar = ray.tmax;
-  rh.ray.time = 0;
-  rh.ray.mask = ~0u;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = to_embree(ray);
   rtcIntersect1(impl_->light_scene, &ctx.base, &rh);
   return std::min(ctx.count, max_hits);
 }
