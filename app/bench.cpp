@@ -112,7 +112,7 @@ double cpu_seconds() {
 
 // One render of scene.settings.integrator: wall and CPU time, rays by kind (the counts are the same every time: the
 // random numbers depend only on pixel, sample index and seed).
-VariantResult render_once(const Scene& scene, int threads) {
+BenchVariantResult render_once(const Scene& scene, int threads) {
   const std::unique_ptr<Integrator> integrator = make_integrator(scene.settings);
   CountingIntegrator counting(*integrator);
   Film film(scene.settings.width, scene.settings.height, FilmOptions{false, false, false, false});
@@ -121,7 +121,7 @@ VariantResult render_once(const Scene& scene, int threads) {
   ro.threads = threads;
   const double c0 = cpu_seconds();
   const RenderStats st = render(scene, counting, film, ro);
-  VariantResult v;
+  BenchVariantResult v;
   v.cpu_seconds = cpu_seconds() - c0;
   v.seconds = st.seconds;
   v.integrator = integrator->name();
@@ -136,7 +136,7 @@ VariantResult render_once(const Scene& scene, int threads) {
 }
 
 // Seconds Embree takes for this mix of rays at the given rates (wall or CPU); 0 when a needed rate is missing.
-double raw_seconds(const VariantResult& v, const RawThroughput& raw, bool packets, bool cpu) {
+double raw_seconds(const BenchVariantResult& v, const RawThroughput& raw, bool packets, bool cpu) {
   const auto pick = [cpu](const Rate& r) { return cpu ? r.cpu : r.wall; };
   const std::pair<uint64_t, double> parts[] = {
       {v.camera_rays, pick(packets ? raw.camera16 : raw.camera1)},
@@ -154,9 +154,9 @@ double raw_seconds(const VariantResult& v, const RawThroughput& raw, bool packet
 
 // Medians over the repetitions; each ratio pairs a render with the raw timing of the same repetition, so that
 // slow drifts of the machine's load cancel.
-VariantResult aggregate(const std::vector<VariantResult>& runs, const std::vector<RawThroughput>& raws,
+BenchVariantResult aggregate(const std::vector<BenchVariantResult>& runs, const std::vector<RawThroughput>& raws,
                         const RawThroughput& raw_median) {
-  VariantResult v = runs.back();
+  BenchVariantResult v = runs.back();
   std::vector<double> wall, cpu, ratio[4];
   for (size_t r = 0; r < runs.size(); ++r) {
     wall.push_back(runs[r].seconds);
@@ -229,8 +229,8 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   // Thread scaling on nee_mis (the default and the variant the targets are about), or the one variant asked for.
   res.scaling_integrator = o.overrides.integrator ? *o.overrides.integrator : "nee_mis";
   const size_t rays = o.raw_rays ? o.raw_rays : (o.quick ? size_t(1) << 12 : size_t(1) << 19);
-  std::vector<std::vector<VariantResult>> runs(variants.size());
-  std::vector<VariantResult> single;
+  std::vector<std::vector<BenchVariantResult>> runs(variants.size());
+  std::vector<BenchVariantResult> single;
   std::vector<RawThroughput> raws;
   std::unique_ptr<RawBench> raw;
   // Repetitions outermost: the renders and the raw timings they are compared with see the same machine load.
@@ -252,13 +252,13 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   res.raw = median_raw(raws);
   for (size_t i = 0; i < variants.size(); ++i) res.variants.push_back(aggregate(runs[i], raws, res.raw));
   std::vector<double> single_rates, utilisation, cpu_eff;
-  for (const VariantResult& v : single) single_rates.push_back(double(v.samples) / std::max(v.seconds, 1e-12));
+  for (const BenchVariantResult& v : single) single_rates.push_back(double(v.samples) / std::max(v.seconds, 1e-12));
   res.samples_per_s_1 = median(single_rates);
   for (size_t i = 0; i < variants.size(); ++i) {
     if (variants[i] != res.scaling_integrator) continue;
     res.samples_per_s_n = res.variants[i].samples_per_s;
     for (size_t r = 0; r < runs[i].size(); ++r) {
-      const VariantResult& v = runs[i][r];
+      const BenchVariantResult& v = runs[i][r];
       utilisation.push_back(v.cpu_seconds / std::max(v.seconds * threads, 1e-12));
       if (v.cpu_seconds > 0 && single[r].cpu_seconds > 0) cpu_eff.push_back(single[r].cpu_seconds / v.cpu_seconds);
     }

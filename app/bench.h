@@ -78,7 +78,7 @@ class RawBench {
 RawThroughput median_raw(const std::vector<RawThroughput>& runs);
 
 /// One integrator variant on one scene (all threads unless stated).
-struct VariantResult {
+struct BenchVariantResult {
   std::string integrator;
   double seconds = 0;                ///< median render time
   double cpu_seconds = 0;            ///< median CPU time of the render, all threads
@@ -105,7 +105,7 @@ struct SceneResult {
   bool peak_reset = false;           ///< the peak was reset before loading (else it is the process's peak)
   double bytes_per_triangle = 0;     ///< (peak - baseline) / triangles
   RawThroughput raw;
-  std::vector<VariantResult> variants;
+  std::vector<BenchVariantResult> variants;
   std::string scaling_integrator;
   int threads = 0;
   double samples_per_s_1 = 0, samples_per_s_n = 0;  ///< one thread, `threads` threads

@@ -20,8 +20,8 @@ struct Target {
   bool met() const { return at_least ? value >= bound : value < bound; }
 };
 
-const VariantResult* find_variant(const SceneResult& s, const std::string& name) {
-  for (const VariantResult& v : s.variants)
+const BenchVariantResult* find_variant(const SceneResult& s, const std::string& name) {
+  for (const BenchVariantResult& v : s.variants)
     if (v.integrator == name) return &v;
   return nullptr;
 }
@@ -36,7 +36,7 @@ std::vector<Target> targets(const BenchReport& r) {
     if (!s.error.empty()) continue;
     const bool large = s.name == "large";
     if (s.name == "cornell-sphere" || large)
-      if (const VariantResult* v = find_variant(s, "nee_mis"))
+      if (const BenchVariantResult* v = find_variant(s, "nee_mis"))
         out.push_back({"nee_mis rays/s over raw Embree rays/s for the same mix", s.name, v->ratio, 0.7, true});
     if (s.threads > 1 && s.samples_per_s_1 > 0)
     {
@@ -103,7 +103,7 @@ void print_bench_report(const BenchReport& r) {
               "ray/sp", "cam/bnc/shd/lq %", "raw Mr/s", "ratio", "cpu", "cpu16");
   for (const SceneResult& s : r.scenes) {
     if (!s.error.empty()) continue;
-    for (const VariantResult& v : s.variants) {
+    for (const BenchVariantResult& v : s.variants) {
       char mix[64];
       std::snprintf(mix, sizeof mix, "%.0f/%.0f/%.0f/%.0f", pct(v.camera_rays, v.rays), pct(v.bounce_rays, v.rays),
                     pct(v.shadow_rays, v.rays), pct(v.light_queries, v.rays));
@@ -172,7 +172,7 @@ std::string bench_report_json(const BenchReport& r) {
                                {"light_query", w.light_query.cpu},
                                {"bounce_geometry_intersect", w.bounce_lumis.cpu}};
     Json vs = Json::array();
-    for (const VariantResult& v : s.variants)
+    for (const BenchVariantResult& v : s.variants)
       vs.push_back({{"integrator", v.integrator},
                     {"seconds", v.seconds},
                     {"cpu_seconds", v.cpu_seconds},
