@@ -73,37 +73,6 @@ std::string cpu_model() {
   return "unknown";
 }
 
-// Forwards to a variant and also keeps its per-kind ray counts, which render() does not sum.
-class CountingIntegrator final : public Integrator {
- public:
-  explicit CountingIntegrator(const Integrator& inner) : inner_(inner) {}
-  Color li(const Scene& scene, const Ray& ray, Sampler& sampler, AovSample* aov,
-           PathCounters& counters) const override {
-    PathCounters local;
-    const Color c = inner_.li(scene, ray, sampler, aov, local);
-    counters.rays += local.rays;
-    PathCounters& mine = mine_.local();
-    mine.rays += local.rays;
-    mine.shadow_rays += local.shadow_rays;
-    mine.light_queries += local.light_queries;
-    return c;
-  }
-  const char* name() const override { return inner_.name(); }
-  PathCounters totals() const {
-    PathCounters t;
-    for (const PathCounters& c : mine_) {
-      t.rays += c.rays;
-      t.shadow_rays += c.shadow_rays;
-      t.light_queries += c.light_queries;
-    }
-    return t;
-  }
-
- private:
-  const Integrator& inner_;
-  mutable tbb::enumerable_thread_specific<PathCounters> mine_;
-};
-
 double cpu_seconds() {
   rusage u;
   getrusage(RUSAGE_SELF, &u);
@@ -112,26 +81,25 @@ double cpu_seconds() {
 
 // One render of scene.settings.integrator: wall and CPU time, rays by kind (the counts are the same every time: the
 // random numbers depend only on pixel, sample index and seed).
-BenchVariantResult render_once(const Scene& scene, int threads) {
+BenchVariantResult render_once(const Scene& scene, int threads, bool camera_packets = true) {
   const std::unique_ptr<Integrator> integrator = make_integrator(scene.settings);
-  CountingIntegrator counting(*integrator);
   Film film(scene.settings.width, scene.settings.height, FilmOptions{false, false, false, false});
   RenderOptions ro;
   ro.spp = scene.settings.spp;
   ro.threads = threads;
+  ro.camera_packets = camera_packets;
   const double c0 = cpu_seconds();
-  const RenderStats st = render(scene, counting, film, ro);
+  const RenderStats st = render(scene, *integrator, film, ro);
   BenchVariantResult v;
   v.cpu_seconds = cpu_seconds() - c0;
   v.seconds = st.seconds;
   v.integrator = integrator->name();
-  const PathCounters t = counting.totals();
   v.samples = st.samples;
   v.rays = st.rays;
   v.camera_rays = st.samples;  // one camera ray per pixel sample
-  v.shadow_rays = t.shadow_rays;
-  v.light_queries = t.light_queries;
-  v.bounce_rays = t.rays - t.shadow_rays - t.light_queries - std::min<uint64_t>(t.rays, st.samples);
+  v.shadow_rays = st.shadow_rays;
+  v.light_queries = st.light_queries;
+  v.bounce_rays = st.rays - st.shadow_rays - st.light_queries - std::min<uint64_t>(st.rays, st.samples);
   return v;
 }
 
@@ -230,7 +198,7 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   res.scaling_integrator = o.overrides.integrator ? *o.overrides.integrator : "nee_mis";
   const size_t rays = o.raw_rays ? o.raw_rays : (o.quick ? size_t(1) << 12 : size_t(1) << 19);
   std::vector<std::vector<BenchVariantResult>> runs(variants.size());
-  std::vector<BenchVariantResult> single;
+  std::vector<BenchVariantResult> single, single_rays;
   std::vector<RawThroughput> raws;
   std::unique_ptr<RawBench> raw;
   // Repetitions outermost: the renders and the raw timings they are compared with see the same machine load.
@@ -242,6 +210,7 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
     }
     s.integrator = res.scaling_integrator;
     single.push_back(render_once(*scene, 1));
+    single_rays.push_back(render_once(*scene, threads, /*camera_packets=*/false));
     if (r == 0) {  // the peak of loading and rendering, before the raw benchmark's ray buffers exist
       res.peak_rss = proc_status_bytes("VmHWM");
       raw = std::make_unique<RawBench>(*scene, s.width, s.height, threads, rays);
@@ -263,6 +232,13 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
       if (v.cpu_seconds > 0 && single[r].cpu_seconds > 0) cpu_eff.push_back(single[r].cpu_seconds / v.cpu_seconds);
     }
   }
+  std::vector<double> single_ray_rates, packet_gain;
+  for (const BenchVariantResult& v : single_rays) single_ray_rates.push_back(double(v.samples) / std::max(v.seconds, 1e-12));
+  res.samples_per_s_single_rays = median(single_ray_rates);
+  for (size_t i = 0; i < variants.size(); ++i)
+    for (size_t r = 0; variants[i] == res.scaling_integrator && r < runs[i].size(); ++r)
+      if (runs[i][r].cpu_seconds > 0) packet_gain.push_back(single_rays[r].cpu_seconds / runs[i][r].cpu_seconds);
+  res.packet_speedup_cpu = median(packet_gain);
   res.cpu_utilisation = median(utilisation);
   res.cpu_efficiency = median(cpu_eff);
   if (res.triangles >= 10000 && res.peak_rss > res.baseline_rss)

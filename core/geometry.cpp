@@ -236,6 +236,44 @@ bool Geometry::intersect(const Ray& ray, Hit& hit) const {
   return true;
 }
 
+void Geometry::intersect16(const Ray* rays, int n, Hit* hits, bool* found) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) RTCRayHit16 p;
+  alignas(64) int valid[16];
+  for (int i = 0; i < 16; ++i) {
+    const bool ok = i < n && ray_is_valid(rays[i]);
+    valid[i] = ok ? -1 : 0;
+    // Masked-off lanes still get a finite ray: Embree may read them.
+    const RTCRayHit r = to_embree(ok ? rays[i] : Ray{{0, 0, 0}, {0, 0, 1}, 0, 0});
+    p.ray.org_x[i] = r.ray.org_x;
+    p.ray.org_y[i] = r.ray.org_y;
+    p.ray.org_z[i] = r.ray.org_z;
+    p.ray.dir_x[i] = r.ray.dir_x;
+    p.ray.dir_y[i] = r.ray.dir_y;
+    p.ray.dir_z[i] = r.ray.dir_z;
+    p.ray.tnear[i] = r.ray.tnear;
+    p.ray.tfar[i] = r.ray.tfar;
+    p.ray.time[i] = 0;
+    p.ray.mask[i] = ~0u;
+    p.ray.id[i] = 0;
+    p.ray.flags[i] = 0;
+    p.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    p.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, impl_->scene, &ctx, &p);
+  for (int i = 0; i < n; ++i) {
+    found[i] = valid[i] && p.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+    if (!found[i]) continue;
+    Hit& hit = hits[i];
+    hit.t = p.ray.tfar[i];
+    hit.p = rays[i].o + rays[i].d * hit.t;
+    fill_hit(p.hit.geomID[i], p.hit.primID[i], p.hit.u[i], p.hit.v[i], hit);
+    hit.front = dot(rays[i].d, hit.ng) < 0;
+  }
+}
+
 bool Geometry::occluded(const Ray& ray) const {
   if (!ray_is_valid(ray)) return true;
   RTCIntersectContext ctx;

@@ -95,6 +95,9 @@ class Geometry {
 
   /// Closest hit in (ray.tmin, ray.tmax). The ray must be finite (checked).
   bool intersect(const Ray& ray, Hit& hit) const;
+  /// Closest hits of up to 16 coherent rays (camera rays) in one Embree packet query: found[i] and hits[i] as
+  /// intersect(rays[i], hits[i]) would give, for i < n (an invalid ray is a miss).
+  void intersect16(const Ray* rays, int n, Hit* hits, bool* found) const;
   /// Whether anything lies in (ray.tmin, ray.tmax).
   bool occluded(const Ray& ray) const;
   /// Every intersection of the ray with geometry that carries a light (light >= 0), ignoring all other geometry

@@ -67,11 +67,9 @@ float to_unit_float(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; 
 
 // Pseudo-random permutation of [0, n) by a bijection on the next power of two and cycle walking (an image >= n is
 // mapped again; it returns below n in fewer than two steps on average, and always, since the map is a permutation).
-uint32_t permute(uint32_t i, uint32_t n, uint64_t key) {
+// mask (the next power of two minus one) and shift depend on n only: the caller computes them once (permute_mask).
+uint32_t permute(uint32_t i, uint32_t n, uint32_t mask, int shift, uint64_t key) {
   if (n <= 1) return 0;
-  uint32_t mask = n - 1;
-  mask |= mask >> 1, mask |= mask >> 2, mask |= mask >> 4, mask |= mask >> 8, mask |= mask >> 16;
-  const int bits = std::popcount(mask), shift = std::max(1, bits / 2);
   const uint32_t k0 = static_cast<uint32_t>(key), k1 = static_cast<uint32_t>(key >> 32);
   do {
     i ^= k0 & mask;
@@ -86,6 +84,28 @@ uint32_t permute(uint32_t i, uint32_t n, uint64_t key) {
   } while (i >= n);
   return i;
 }
+
+uint32_t permute_mask(uint32_t n) {
+  uint32_t mask = n - 1;
+  mask |= mask >> 1, mask |= mask >> 2, mask |= mask >> 4, mask |= mask >> 8, mask |= mask >> 16;
+  return mask;
+}
+
+// hash_combine(a, b) with mix64(b) already computed: the sampler's per-sample and per-dimension constants.
+uint64_t hash_combine_mixed(uint64_t a, uint64_t mixed_b) {
+  return mix64(a ^ (mixed_b + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2)));
+}
+
+// mix64(d) for the first dimensions (a path of depth 8 uses 66): hash_combine(pixel, d) without one of its mixes.
+constexpr int kMixedDims = 128;
+struct MixedDims {
+  uint64_t v[kMixedDims];
+  MixedDims() {
+    for (int d = 0; d < kMixedDims; ++d) v[d] = mix64(static_cast<uint64_t>(d));
+  }
+};
+const MixedDims kMixed;
+uint64_t mixed_dim(uint32_t d) { return d < kMixedDims ? kMixed.v[d] : mix64(d); }
 
 // The most nearly square factorisation spp = sx * sy with sx >= sy.
 void near_square(uint32_t spp, uint32_t* sx, uint32_t* sy) {
@@ -115,24 +135,33 @@ const char* sampler_type_name(SamplerType type) {
 
 Sampler::Sampler(SamplerType type, uint32_t spp, uint32_t seed) : type_(type), spp_(std::max(spp, 1u)), seed_(seed) {
   near_square(spp_, &strata_x_, &strata_y_);
+  mask_ = permute_mask(spp_);
+  shift_ = std::max(1, static_cast<int>(std::bit_width(mask_)) / 2);
+  inv_spp_ = 1.0f / static_cast<float>(spp_);
+  inv_strata_x_ = 1.0f / static_cast<float>(strata_x_);
+  inv_strata_y_ = 1.0f / static_cast<float>(strata_y_);
 }
 
 void Sampler::start(uint32_t px, uint32_t py, uint32_t index) {
   px_ = px, py_ = py, index_ = index, dim_ = 0;
   pixel_hash_ = hash_combine(hash_combine(px, py), 0x51ed0000ULL + seed_);
   rng_.seed(hash_combine(pixel_hash_, index), pixel_hash_);
+  // Past spp, each further block of spp samples is a fresh stratified set (its own permutation).
+  stratum_index_ = index % spp_;
+  mixed_block_ = mix64(index / spp_);
+}
+
+uint32_t Sampler::stratum(uint32_t d) const {
+  const uint64_t key = hash_combine_mixed(pixel_hash_, mixed_dim(d));
+  return permute(stratum_index_, spp_, mask_, shift_, hash_combine_mixed(key, mixed_block_));
 }
 
 float Sampler::get1d() {
   const uint32_t d = dim_++;
   if (type_ == SamplerType::Independent) return rng_.next_float();
-  const uint64_t key = hash_combine(pixel_hash_, d);
-  if (type_ == SamplerType::Stratified) {
-    // Past spp, each further block of spp samples is a fresh stratified set (its own permutation).
-    const uint32_t block = index_ / spp_;
-    const uint32_t stratum = permute(index_ % spp_, spp_, hash_combine(key, block));
-    return std::min((static_cast<float>(stratum) + rng_.next_float()) / static_cast<float>(spp_), kOneMinusEpsilon);
-  }
+  if (type_ == SamplerType::Stratified)
+    return std::min((static_cast<float>(stratum(d)) + rng_.next_float()) * inv_spp_, kOneMinusEpsilon);
+  const uint64_t key = hash_combine_mixed(pixel_hash_, mixed_dim(d));
   const uint32_t index = owen_scramble(index_, seed32(mix64(key)));
   return to_unit_float(owen_scramble(reverse_bits(index), seed32(mix64(key + 1))));
 }
@@ -144,14 +173,13 @@ Vec2 Sampler::get2d() {
     const float a = rng_.next_float();
     return {a, rng_.next_float()};
   }
-  const uint64_t key = hash_combine(pixel_hash_, d);
   if (type_ == SamplerType::Stratified) {
-    const uint32_t block = index_ / spp_;
-    const uint32_t stratum = permute(index_ % spp_, spp_, hash_combine(key, block));
+    const uint32_t k = stratum(d);
     const float jx = rng_.next_float(), jy = rng_.next_float();
-    return {std::min((static_cast<float>(stratum % strata_x_) + jx) / static_cast<float>(strata_x_), kOneMinusEpsilon),
-            std::min((static_cast<float>(stratum / strata_x_) + jy) / static_cast<float>(strata_y_), kOneMinusEpsilon)};
+    return {std::min((static_cast<float>(k % strata_x_) + jx) * inv_strata_x_, kOneMinusEpsilon),
+            std::min((static_cast<float>(k / strata_x_) + jy) * inv_strata_y_, kOneMinusEpsilon)};
   }
+  const uint64_t key = hash_combine_mixed(pixel_hash_, mixed_dim(d));
   // Shuffling the index by an MSB-first nested scramble maps each aligned block of 2^k indices onto another aligned
   // block, so the first 2^k samples of a pixel are still a (0,k,2)-net.
   const uint32_t index = owen_scramble(index_, seed32(mix64(key)));

@@ -21,6 +21,7 @@ class Sampler {
  public:
   /// spp is the number of samples each pixel will take (stratified uses it to size its strata).
   Sampler(SamplerType type, uint32_t spp, uint32_t seed);
+  Sampler() : Sampler(SamplerType::Independent, 1, 0) {}
 
   /// Begin sample `index` of pixel (px, py). Resets the dimension counter.
   void start(uint32_t px, uint32_t py, uint32_t index);
@@ -38,7 +39,15 @@ class Sampler {
   uint32_t px_ = 0, py_ = 0, index_ = 0, dim_ = 0;
   uint64_t pixel_hash_ = 0;
   uint32_t strata_x_ = 1, strata_y_ = 1;  // stratified: spp factored into a near-square grid
+  // Stratified constants: of spp (constructor) and of the sample index (start()).
+  uint32_t mask_ = 0;
+  int shift_ = 1;
+  float inv_spp_ = 1, inv_strata_x_ = 1, inv_strata_y_ = 1;
+  uint32_t stratum_index_ = 0;
+  uint64_t mixed_block_ = 0;
   Pcg32 rng_;
+
+  uint32_t stratum(uint32_t d) const;  ///< the stratum of dimension d for this sample
 };
 
 }  // namespace lumis

@@ -19,11 +19,18 @@ struct PathCounters {
   uint64_t light_queries = 0;  ///< of which all-light-hit queries (one-sample MIS density), for `lumis bench`
 };
 
+/// The camera ray's closest hit, when the renderer has traced it already (camera rays go in 16-ray packets).
+struct PrimaryHit {
+  bool found = false;
+  Hit hit;
+};
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
-  /// Radiance (W / (m^2 sr)) arriving along the camera ray, one sample. aov (may be null) receives first-hit data.
-  virtual Color li(const Scene& scene, const Ray& ray, Sampler& sampler, AovSample* aov,
+  /// Radiance (W / (m^2 sr)) arriving along the camera ray, one sample. primary (may be null: li traces the ray)
+  /// is the ray's closest hit; aov (may be null) receives first-hit data.
+  virtual Color li(const Scene& scene, const Ray& ray, const PrimaryHit* primary, Sampler& sampler, AovSample* aov,
                    PathCounters& counters) const = 0;
   virtual const char* name() const = 0;
 };

@@ -70,7 +70,7 @@ class PathIntegrator final : public Integrator {
 
   const char* name() const override { return name_; }
 
-  Color li(const Scene& scene, const Ray& camera_ray, Sampler& sampler, AovSample* aov,
+  Color li(const Scene& scene, const Ray& camera_ray, const PrimaryHit* primary, Sampler& sampler, AovSample* aov,
            PathCounters& counters) const override {
     Color radiance(0), beta(1);
     PathState prev;
@@ -78,7 +78,9 @@ class PathIntegrator final : public Integrator {
     for (int bounce = 0;; ++bounce) {
       Hit hit;
       ++counters.rays;
-      if (!scene.geometry.intersect(ray, hit)) {
+      const bool found = bounce == 0 && primary ? primary->found : scene.geometry.intersect(ray, hit);
+      if (bounce == 0 && primary && found) hit = primary->hit;
+      if (!found) {
         if (scene.environment >= 0) {
           const Color le = scene.lights[scene.environment]->le_escaped(ray.d);
           if (!is_black(le))

@@ -18,7 +18,8 @@ namespace lumis {
 
 namespace {
 
-constexpr int kTile = 16;
+constexpr int kTile = 16;  // a multiple of the packet block
+constexpr int kLanes = 16, kBlock = 4;
 
 // Embree wants flush-to-zero and denormals-are-zero on every thread that traces rays.
 class FtzObserver : public tbb::task_scheduler_observer {
@@ -50,6 +51,8 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   const SamplerType sampler_type = scene.settings.sampler;
   const uint32_t seed = scene.settings.seed;
   const uint32_t spp = std::max(1u, options.spp);
+  const bool packets = options.camera_packets;
+  const int block = packets ? kBlock : 1;
 
   tbb::enumerable_thread_specific<PathCounters> counters;
   RenderStats stats;
@@ -68,20 +71,42 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
       tbb::parallel_for(tbb::blocked_range<int>(0, n_tiles, 1), [&](const tbb::blocked_range<int>& r) {
         pass_sync.load(std::memory_order_acquire);
         PathCounters& local = counters.local();
-        Sampler sampler(sampler_type, spp, seed);
+        // A block of pixels shares each sample index: their camera rays form one packet. Each pixel keeps its own
+        // sampler, so the numbers (and the image) are those of one-by-one tracing.
+        Sampler samplers[kLanes];
+        for (Sampler& s : samplers) s = Sampler(sampler_type, spp, seed);
+        Ray rays[kLanes];
+        PrimaryHit primary[kLanes];
+        Hit hits[kLanes];
+        bool found[kLanes];
         for (int tile = r.begin(); tile < r.end(); ++tile) {
           const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
           const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
-          for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x)
+          for (int by = y0; by < y1; by += block)
+            for (int bx = x0; bx < x1; bx += block) {
+              const int w = std::min(block, x1 - bx), h = std::min(block, y1 - by), n = w * h;
               for (uint32_t i = begin; i < end; ++i) {
-                sampler.start(static_cast<uint32_t>(x), static_cast<uint32_t>(y), i);
-                const Vec2 jitter = sampler.get2d();  // box filter: uniform over the pixel
-                const Ray ray = camera.generate_ray({x + jitter.x, y + jitter.y});
-                AovSample aov;
-                const Color l = integrator.li(scene, ray, sampler, &aov, local);
-                film.add(x, y, l, &aov);
+                for (int k = 0; k < n; ++k) {
+                  const int x = bx + k % w, y = by + k / w;
+                  samplers[k].start(static_cast<uint32_t>(x), static_cast<uint32_t>(y), i);
+                  const Vec2 jitter = samplers[k].get2d();  // box filter: uniform over the pixel
+                  rays[k] = camera.generate_ray({x + jitter.x, y + jitter.y});
+                }
+                if (packets) {
+                  scene.geometry.intersect16(rays, n, hits, found);
+                  for (int k = 0; k < n; ++k) {
+                    primary[k].found = found[k];
+                    if (found[k]) primary[k].hit = hits[k];
+                  }
+                }
+                for (int k = 0; k < n; ++k) {
+                  AovSample aov;
+                  const Color l = integrator.li(scene, rays[k], packets ? &primary[k] : nullptr, samplers[k], &aov,
+                                                local);
+                  film.add(bx + k % w, by + k / w, l, &aov);
+                }
               }
+            }
         }
         pass_sync.fetch_add(1, std::memory_order_release);
       });
@@ -103,7 +128,11 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   stats.seconds = seconds_since(t0);
   stats.spp = done;
   stats.stopped_early = done < spp;
-  for (const PathCounters& c : counters) stats.rays += c.rays;
+  for (const PathCounters& c : counters) {
+    stats.rays += c.rays;
+    stats.shadow_rays += c.shadow_rays;
+    stats.light_queries += c.light_queries;
+  }
   stats.dropped = film.dropped();
   return stats;
 }

@@ -22,6 +22,7 @@ struct RenderOptions {
   uint32_t spp = 16;
   double time_budget = 0;                 ///< seconds; 0 = render all spp
   int threads = 0;                        ///< 0 = all cores
+  bool camera_packets = true;             ///< trace camera rays in 4x4-pixel packets of 16 (false: one by one)
   const std::atomic<bool>* cancel = nullptr;
   std::function<void(const RenderProgress&)> on_progress;  ///< called from the calling thread between tiles
 };
@@ -31,6 +32,8 @@ struct RenderStats {
   uint32_t spp = 0;           ///< samples per pixel actually taken
   uint64_t samples = 0;       ///< pixel samples
   uint64_t rays = 0;          ///< rays traced (closest hit + shadow + light-density queries)
+  uint64_t shadow_rays = 0;   ///< of which shadow rays
+  uint64_t light_queries = 0; ///< of which light-density queries (`mis`)
   uint64_t dropped = 0;       ///< non-finite samples dropped
   bool stopped_early = false; ///< time budget or cancel
 };

@@ -1,0 +1,73 @@
+// Geometry's ray queries: the 16-ray packet query (camera rays) against the single-ray one, on a scene with a
+// triangle mesh and spheres, with hits, misses, partial packets and an invalid ray. Deterministic: no statistics.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/geometry.h"
+#include "core/rng.h"
+
+namespace lumis {
+namespace {
+
+void build_scene(Geometry& g) {
+  TriangleMesh quad;
+  quad.positions = {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}};
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  quad.uv0 = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  quad.material = 3;
+  g.add_mesh(quad);
+  g.add_sphere({{0.5f, 0.2f, 1}, 0.4f, 1, -1});
+  g.add_sphere({{-0.8f, -0.5f, 0.5f}, 0.3f, -1, 0});
+  g.commit();
+}
+
+void expect_same_hit(const Hit& a, const Hit& b, int lane) {
+  EXPECT_EQ(a.geom_id, b.geom_id) << lane;
+  EXPECT_EQ(a.prim_id, b.prim_id) << lane;
+  EXPECT_NEAR(a.t, b.t, 1e-5f * a.t) << lane;
+  EXPECT_NEAR(length(a.p - b.p), 0, 1e-5f) << lane;
+  EXPECT_NEAR(dot(a.ng, b.ng), 1, 1e-6f) << lane;
+  EXPECT_NEAR(a.uv[0].x, b.uv[0].x, 1e-5f) << lane;
+  EXPECT_NEAR(a.uv[0].y, b.uv[0].y, 1e-5f) << lane;
+  EXPECT_EQ(a.front, b.front) << lane;
+  EXPECT_EQ(a.material, b.material) << lane;
+  EXPECT_EQ(a.light, b.light) << lane;
+}
+
+TEST(Geometry, PacketQueryMatchesSingleRays) {
+  Geometry g;
+  build_scene(g);
+  Pcg32 rng(7, 11);
+  int hits = 0, misses = 0;
+  for (int packet = 0; packet < 64; ++packet) {
+    const int n = packet % 4 == 3 ? 1 + packet % 16 : 16;  // some partial packets
+    Ray rays[16];
+    const Vec3 eye(0.3f, -0.2f, 4);
+    for (int i = 0; i < n; ++i) {
+      // Camera-like rays from one eye toward a 5 x 5 window around the scene: most hit, the edges miss.
+      const Vec3 target(rng.next_float() * 5 - 2.5f, rng.next_float() * 5 - 2.5f, 0);
+      rays[i] = {eye, normalize(target - eye), 0, INFINITY};
+    }
+    if (packet == 5) rays[2].d = {NAN, 0, -1};  // an invalid ray is a miss, as intersect() says
+    Hit packed[16];
+    bool found[16];
+    g.intersect16(rays, n, packed, found);
+    for (int i = 0; i < n; ++i) {
+      Hit single;
+      const bool f = g.intersect(rays[i], single);
+      ASSERT_EQ(f, found[i]) << "packet " << packet << " lane " << i;
+      if (f) {
+        expect_same_hit(single, packed[i], i);
+        ++hits;
+      } else {
+        ++misses;
+      }
+    }
+  }
+  EXPECT_GT(hits, 100);  // the test sees both outcomes
+  EXPECT_GT(misses, 10);
+}
+
+}  // namespace
+}  // namespace lumis
