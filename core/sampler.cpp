@@ -4,7 +4,8 @@
 // independent: PCG32 seeded from hash(pixel, index, seed); dimension d is the d-th draw.
 // stratified:  the lecture's "stratified random numbers instead of a PRNG": jittered strata (spp strata for a 1D
 //              dimension, a near-square grid for a 2D one); which stratum sample `index` gets is a pseudo-random
-//              permutation keyed by (pixel, dimension, seed), so dimensions are not correlated with each other.
+//              permutation keyed by (pixel, dimension, seed, block of spp samples), so dimensions are not
+//              correlated with each other.
 // sobol:       the 2D Sobol (0,2)-sequence per pair of dimensions (Burley 2020, "Practical Hash-based Owen
 //              Scrambling"): the index is shuffled by a nested scramble and both coordinates are Owen-scrambled,
 //              all with seeds keyed by (pixel, dimension, seed), so every pair is an independent randomised net.
@@ -148,12 +149,11 @@ void Sampler::start(uint32_t px, uint32_t py, uint32_t index) {
   rng_.seed(hash_combine(pixel_hash_, index), pixel_hash_);
   // Past spp, each further block of spp samples is a fresh stratified set (its own permutation).
   stratum_index_ = index % spp_;
-  mixed_block_ = mix64(index / spp_);
+  block_hash_ = hash_combine(pixel_hash_, index / spp_);
 }
 
 uint32_t Sampler::stratum(uint32_t d) const {
-  const uint64_t key = hash_combine_mixed(pixel_hash_, mixed_dim(d));
-  return permute(stratum_index_, spp_, mask_, shift_, hash_combine_mixed(key, mixed_block_));
+  return permute(stratum_index_, spp_, mask_, shift_, hash_combine_mixed(block_hash_, mixed_dim(d)));
 }
 
 float Sampler::get1d() {

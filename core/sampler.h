@@ -44,7 +44,7 @@ class Sampler {
   int shift_ = 1;
   float inv_spp_ = 1, inv_strata_x_ = 1, inv_strata_y_ = 1;
   uint32_t stratum_index_ = 0;
-  uint64_t mixed_block_ = 0;
+  uint64_t block_hash_ = 0;  // hash of (pixel, seed, index / spp): keys the permutations of this block of spp
   Pcg32 rng_;
 
   uint32_t stratum(uint32_t d) const;  ///< the stratum of dimension d for this sample

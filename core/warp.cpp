@@ -108,12 +108,6 @@ Vec2 invert_spherical_cap(Vec3 w, float cos_max) {
   return {u_from_phi(w), clamp01(one_minus_z / (1.0f - cos_max))};
 }
 
-float one_minus_cos_from_sin(float sin_max) {
-  // 1 - sqrt(1 - s^2) = s^2 / (1 + sqrt(1 - s^2)): no subtraction of nearly equal numbers.
-  const float s2 = sin_max * sin_max;
-  return s2 / (1.0f + std::sqrt(std::max(1.0f - s2, 0.0f)));
-}
-
 // ---- Disk and triangle ----
 
 Vec2 sample_uniform_disk(Vec2 u) {

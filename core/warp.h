@@ -40,8 +40,14 @@ Vec3 sample_spherical_cap(Vec2 u, float cos_max);
 /// Solid-angle density 1/(2 pi (1 - cos_max)) inside the cap (z >= cos_max), else 0.
 float spherical_cap_pdf(Vec3 w, float cos_max);
 Vec2 invert_spherical_cap(Vec3 w, float cos_max);
-/// 1 - cos(alpha) for sin(alpha) = sin_max, stable for tiny caps (no cancellation).
-float one_minus_cos_from_sin(float sin_max);
+/// 1 - cos(alpha) for sin^2(alpha) = sin2_max in [0, 1], stable for tiny caps: 1 - sqrt(1 - s^2) written as
+/// s^2 / (1 + sqrt(1 - s^2)), no subtraction of nearly equal numbers. A cap of radius r seen from distance d has
+/// sin2_max = r^2 / d^2 (no square root needed for it).
+inline float one_minus_cos_from_sin2(float sin2_max) {
+  return sin2_max / (1.0f + std::sqrt(std::max(1.0f - sin2_max, 0.0f)));
+}
+/// The same for sin(alpha) = sin_max.
+inline float one_minus_cos_from_sin(float sin_max) { return one_minus_cos_from_sin2(sin_max * sin_max); }
 
 // ---- Planar shapes ----
 

@@ -62,6 +62,10 @@ std::optional<LightChoice> LightSelector::sample(const LightSampleContext& ctx, 
     }
     case LightSelection::Importance: break;
   }
+  if (n == 1) {  // the one light, when it can contribute
+    const float c = clean_importance(lights_[0], ctx);
+    return c > 0 ? std::optional<LightChoice>(LightChoice{0, 1.0f}) : std::nullopt;
+  }
   std::array<float, kCachedImportances> cache;
   const bool cached = n <= kCachedImportances;
   float total = 0;
@@ -95,6 +99,7 @@ float LightSelector::pmf(const LightSampleContext& ctx, int index) const {
     case LightSelection::Power: return power_.pmf(static_cast<size_t>(index));
     case LightSelection::Importance: break;
   }
+  if (n == 1) return clean_importance(lights_[0], ctx) > 0 ? 1.0f : 0.0f;
   float total = 0, mine = 0;
   for (size_t j = 0; j < n; ++j) {
     const float c = clean_importance(lights_[j], ctx);

@@ -120,7 +120,7 @@ class MeshLight final : public Light {
     if (dot(ctx.n, to_c) < -radius_) return 0;
     const float d2 = length_squared(to_c);
     const float solid_angle =
-        d2 <= radius_ * radius_ ? 4 * kPi : 2 * kPi * one_minus_cos_from_sin(radius_ / std::sqrt(d2));
+        d2 <= radius_ * radius_ ? 4 * kPi : 2 * kPi * one_minus_cos_from_sin2(radius_ * radius_ / d2);
     const float mean_lum = power_ / (kPi * total_area_ * (two_sided_ ? 2 : 1));
     return solid_angle * mean_lum;
   }

@@ -19,15 +19,15 @@ class SphereLight final : public Light {
     const float d2 = length_squared(to_c);
     if (!(r_ > 0)) return std::nullopt;
     if (d2 <= r_ * r_) return sample_area(ctx, u);
-    const float d = std::sqrt(d2);
-    const float one_minus_cos_max = one_minus_cos_from_sin(std::min(r_ / d, 1.0f));
+    const float d = std::sqrt(d2), inv_d = 1 / d;
+    const float one_minus_cos_max = cap_one_minus_cos(d2);
     // Lecture's cap map, written with 1 - cos(theta) so that tiny caps keep their precision.
     const float one_minus_z = one_minus_cos_max * u.y;
     const float z = 1 - one_minus_z;
     const float sin_theta = safe_sqrt(one_minus_z * (2 - one_minus_z));
     const float phi = 2 * kPi * u.x - kPi;
-    const Frame frame = Frame::from_normal(to_c / d);
-    const Vec3 wi = normalize(frame.to_world({std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, z}));
+    // Unit up to rounding: z^2 + sin_theta^2 = 1 and the frame is orthonormal.
+    const Vec3 wi = Frame::from_normal(to_c * inv_d).to_world({std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, z});
     // Nearest intersection of the ray with the sphere; the discriminant is >= 0 up to rounding inside the cap.
     const float t = std::max(0.0f, d * z - safe_sqrt(r_ * r_ - d2 * sin_theta * sin_theta));
     LightSample s;
@@ -51,7 +51,7 @@ class SphereLight final : public Light {
       const float dist2 = length_squared(on_light.p - ctx.p);
       return cos_l > 0 ? dist2 / (cos_l * area()) : 0.0f;
     }
-    return 1 / (2 * kPi * one_minus_cos_from_sin(std::min(r_ / std::sqrt(d2), 1.0f)));
+    return 1 / (2 * kPi * cap_one_minus_cos(d2));
   }
 
   /// Radiance leaving on_light toward world direction w: outward side only.
@@ -65,7 +65,7 @@ class SphereLight final : public Light {
     const float d2 = length_squared(to_c);
     if (d2 <= r_ * r_) return 0;
     if (dot(ctx.n, to_c) < -r_) return 0;
-    const float solid_angle = 2 * kPi * one_minus_cos_from_sin(std::min(r_ / std::sqrt(d2), 1.0f));
+    const float solid_angle = 2 * kPi * cap_one_minus_cos(d2);
     return solid_angle * luminance(radiance_);
   }
 
@@ -75,6 +75,8 @@ class SphereLight final : public Light {
 
  private:
   float area() const { return 4 * kPi * r_ * r_; }
+  /// 1 - cos of the half-angle of the cap the sphere subtends from squared distance d2 > r^2.
+  float cap_one_minus_cos(float d2) const { return one_minus_cos_from_sin2(std::min(r_ * r_ / d2, 1.0f)); }
 
   // Uniform point on the sphere; solid-angle density dist^2 / (|cos| area) at the receiver.
   std::optional<LightSample> sample_area(const LightSampleContext& ctx, Vec2 u) const {

@@ -14,6 +14,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
 
 #include "app/scene_loader.h"
 #include "integrators/render.h"
@@ -24,6 +29,12 @@ namespace {
 
 std::string scene_path(const char* name) { return std::string(LUMIS_SOURCE_DIR) + "/scenes/" + name; }
 
+// LUMIS_AGREEMENT_SEED overrides the variants' seed (default 1), to measure the tests' false-failure rate.
+uint32_t test_seed() {
+  const char* s = std::getenv("LUMIS_AGREEMENT_SEED");
+  return s ? static_cast<uint32_t>(std::strtoul(s, nullptr, 10)) : 1u;
+}
+
 struct Config {
   int size = 24;
   int max_depth = 3;
@@ -31,6 +42,8 @@ struct Config {
   int block = 4;            ///< block side in pixels
   uint32_t slow_spp = 0;    ///< spp for uniform/bsdf/light when they need more than `spp` (heavy tails)
   bool skip_uniform = false;
+  std::string edit_from, edit_to;  ///< when set: render the scene file with this text replaced (a variant scene)
+  int rr_depth = 0;         ///< Russian roulette off (see the note above expect_agreement)
 };
 
 Film render_variant(Scene& scene, const std::string& integrator, uint32_t spp, uint32_t seed) {
@@ -45,14 +58,30 @@ Film render_variant(Scene& scene, const std::string& integrator, uint32_t spp, u
 }
 
 std::unique_ptr<Scene> load_small(const char* name, const Config& s) {
-  auto scene = load_scene(scene_path(name));
+  std::string path = scene_path(name);
+  if (!s.edit_from.empty()) {
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t at = text.find(s.edit_from);
+    if (at == std::string::npos) throw std::runtime_error(path + " has no " + s.edit_from);
+    text.replace(at, s.edit_from.size(), s.edit_to);
+    path = (std::filesystem::temp_directory_path() / ("lumis-agreement-" + std::string(name))).string();
+    std::ofstream(path) << text;
+  }
+  auto scene = load_scene(path);
   const float aspect = static_cast<float>(scene->settings.width) / static_cast<float>(scene->settings.height);
   scene->settings.height = s.size;
   scene->settings.width = std::max(4, static_cast<int>(std::lround(s.size * aspect)) / 4 * 4);
   scene->settings.max_depth = s.max_depth;
+  scene->settings.rr_depth = s.rr_depth;
   return scene;
 }
 
+// Russian roulette is off here: with q = max(beta), a path that survives a low q carries its whole remaining
+// radiance (often a light seen directly), a rare large value that 4096 samples per block do not average out. With
+// it on, `mis` (whose light-sampled directions near the light get small weights, so low q) failed 2 of 12 seeds on
+// cornell-sphere and 3 of 12 on the rough variant, always low; with it off, 0 of 10 and 0 of 12. Roulette's
+// unbiasedness is tested where the answer is exact (tests/unit/test_integrators_analytic.cpp, closed sphere).
 void expect_agreement(const char* name, const Config& cfg) {
   auto scene = load_small(name, cfg);
   const Film ref = render_variant(*scene, "nee_mis", cfg.reference_spp, 1000);
@@ -62,7 +91,7 @@ void expect_agreement(const char* name, const Config& cfg) {
   for (const char* variant : {"uniform", "bsdf", "light", "mis", "nee_mis"}) {
     if (cfg.skip_uniform && std::string(variant) == "uniform") continue;
     const bool slow = cfg.slow_spp && std::string(variant) != "mis" && std::string(variant) != "nee_mis";
-    const Film img = render_variant(*scene, variant, slow ? cfg.slow_spp : cfg.spp, 1);
+    const Film img = render_variant(*scene, variant, slow ? cfg.slow_spp : cfg.spp, test_seed());
     int rejected = 0;
     double worst = 0;
     for (int by = 0; by < nby; ++by)
@@ -74,7 +103,11 @@ void expect_agreement(const char* name, const Config& cfg) {
           const double diff = std::abs(a.mean[c] - r.mean[c]);
           const double z = sd > 0 ? diff / sd : (diff > 1e-6 ? INFINITY : 0);
           worst = std::max(worst, z);
-          if (z > z_max) ++rejected;
+          if (z > z_max) {
+            ++rejected;
+            std::printf("%s: %s block (%d, %d) channel %d: %g, reference %g, z %.2f\n", name, variant, bx, by, c,
+                        a.mean[c], r.mean[c], z);
+          }
         }
       }
     EXPECT_EQ(rejected, 0) << name << ": " << variant << " disagrees with the reference in " << rejected
@@ -82,7 +115,26 @@ void expect_agreement(const char* name, const Config& cfg) {
   }
 }
 
-TEST(VariantAgreement, CornellSphere) { expect_agreement("cornell-sphere.json", Config{24, 3, 256, 2048}); }
+// `uniform` is left out on the shipped Cornell box: its copper sphere (roughness 0.25, GGX alpha 0.0625) reflects
+// the small sphere light into caustics on the floor, which uniform directions find so rarely that the block means
+// are still heavy-tailed at thousands of samples (measured at the fixed reference: uniform failed 10 of 12 seeds at
+// 256 spp and 1 of 8 at 8192 spp, always low; at 131072 spp the worst block's red mean was 0.158 against nee_mis's
+// 0.155, so it converges, slowly). It is checked on the same box with a rough copper sphere below.
+TEST(VariantAgreement, CornellSphere) {
+  Config cfg{24, 3, 256, 2048};
+  cfg.skip_uniform = true;
+  expect_agreement("cornell-sphere.json", cfg);
+}
+
+// The same box with the copper sphere at roughness 0.7 (alpha 0.49): glossy, but with a lobe wide enough for
+// uniform sampling's block means to be near normal at 1024 spp. All five variants.
+TEST(VariantAgreement, CornellRoughSphere) {
+  Config cfg{24, 3, 256, 2048};
+  cfg.slow_spp = 1024;
+  cfg.edit_from = "\"roughness\": 0.25";
+  cfg.edit_to = "\"roughness\": 0.7";
+  expect_agreement("cornell-sphere.json", cfg);
+}
 
 // Veach's scene is built to defeat single strategies: light sampling on the near-mirror plate and BSDF sampling of
 // the tiny lights are heavy-tailed, and a z-test needs enough hits of those rare paths for the central limit
