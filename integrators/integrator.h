@@ -21,8 +21,7 @@ struct PathCounters {
 
 /// The camera ray's closest hit, when the renderer has traced it already (camera rays go in 16-ray packets).
 struct PrimaryHit {
-  bool found = false;
-  Hit hit;
+  const Hit* hit = nullptr;  ///< null: the ray escaped
 };
 
 class Integrator {

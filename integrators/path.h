@@ -78,8 +78,8 @@ class PathIntegrator final : public Integrator {
     for (int bounce = 0;; ++bounce) {
       Hit hit;
       ++counters.rays;
-      const bool found = bounce == 0 && primary ? primary->found : scene.geometry.intersect(ray, hit);
-      if (bounce == 0 && primary && found) hit = primary->hit;
+      const bool found = bounce == 0 && primary ? primary->hit != nullptr : scene.geometry.intersect(ray, hit);
+      if (bounce == 0 && primary && found) hit = *primary->hit;
       if (!found) {
         if (scene.environment >= 0) {
           const Color le = scene.lights[scene.environment]->le_escaped(ray.d);

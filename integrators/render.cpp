@@ -94,10 +94,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
                 }
                 if (packets) {
                   scene.geometry.intersect16(rays, n, hits, found);
-                  for (int k = 0; k < n; ++k) {
-                    primary[k].found = found[k];
-                    if (found[k]) primary[k].hit = hits[k];
-                  }
+                  for (int k = 0; k < n; ++k) primary[k].hit = found[k] ? &hits[k] : nullptr;
                 }
                 for (int k = 0; k < n; ++k) {
                   AovSample aov;
