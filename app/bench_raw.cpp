@@ -1,12 +1,8 @@
 // Embree's raw throughput on a scene's own BVH: the rays are made first (from the scene's camera, hit points and
 // lights), then only the Embree calls are timed, over all threads, as the renderer would issue them.
-#include <embree3/rtcore.h>
-#include <pmmintrin.h>
 #include <sys/resource.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
-#include <tbb/task_scheduler_observer.h>
-#include <xmmintrin.h>
 
 #include <algorithm>
 #include <atomic>
@@ -16,6 +12,7 @@
 #include <vector>
 
 #include "app/bench.h"
+#include "core/embree_util.h"
 #include "core/frame.h"
 #include "core/rng.h"
 #include "core/warp.h"
@@ -26,16 +23,6 @@ namespace {
 
 constexpr size_t kGrain = 1024;  // rays per task: large enough that scheduling costs nothing measurable
 
-// Embree wants flush-to-zero and denormals-are-zero on every thread that traces rays (as render() sets them).
-class FtzObserver : public tbb::task_scheduler_observer {
- public:
-  explicit FtzObserver(tbb::task_arena& arena) : tbb::task_scheduler_observer(arena) { observe(true); }
-  ~FtzObserver() override { observe(false); }
-  void on_scheduler_entry(bool) override {
-    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-  }
-};
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -44,38 +31,7 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
-void to_embree(const Ray& r, RTCRay& e) {
-  e.org_x = r.o.x;
-  e.org_y = r.o.y;
-  e.org_z = r.o.z;
-  e.dir_x = r.d.x;
-  e.dir_y = r.d.y;
-  e.dir_z = r.d.z;
-  e.tnear = r.tmin;
-  e.tfar = r.tmax;
-  e.time = 0;
-  e.mask = ~0u;
-  e.id = 0;
-  e.flags = 0;
-}
 
-// Lane i of a 16-wide packet.
-void to_embree16(const Ray& r, RTCRayHit16& p, int i) {
-  p.ray.org_x[i] = r.o.x;
-  p.ray.org_y[i] = r.o.y;
-  p.ray.org_z[i] = r.o.z;
-  p.ray.dir_x[i] = r.d.x;
-  p.ray.dir_y[i] = r.d.y;
-  p.ray.dir_z[i] = r.d.z;
-  p.ray.tnear[i] = r.tmin;
-  p.ray.tfar[i] = r.tmax;
-  p.ray.time[i] = 0;
-  p.ray.mask[i] = ~0u;
-  p.ray.id[i] = 0;
-  p.ray.flags[i] = 0;
-  p.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-  p.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-}
 
 enum class Query { Intersect, Occluded };
 
@@ -109,15 +65,11 @@ size_t trace1(RTCScene scene, const std::vector<Ray>& rays, size_t begin, size_t
   rtcInitIntersectContext(&ctx);
   for (size_t i = begin; i < end; ++i) {
     if (q == Query::Intersect) {
-      RTCRayHit rh;
-      to_embree(rays[i], rh.ray);
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      RTCRayHit rh = to_embree(rays[i]);
       rtcIntersect1(scene, &ctx, &rh);
       count += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
     } else {
-      RTCRay r;
-      to_embree(rays[i], r);
+      RTCRay r = to_embree(rays[i]).ray;
       rtcOccluded1(scene, &ctx, &r);
       count += r.tfar < 0;
     }

@@ -1,6 +1,6 @@
 #include "core/geometry.h"
 
-#include <embree3/rtcore.h>
+#include "core/embree_util.h"
 
 #include <cmath>
 #include <cstdio>
@@ -49,24 +49,6 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-RTCRayHit to_embree(const Ray& ray) {
-  RTCRayHit rh;
-  rh.ray.org_x = ray.o.x;
-  rh.ray.org_y = ray.o.y;
-  rh.ray.org_z = ray.o.z;
-  rh.ray.dir_x = ray.d.x;
-  rh.ray.dir_y = ray.d.y;
-  rh.ray.dir_z = ray.d.z;
-  rh.ray.tnear = ray.tmin;
-  rh.ray.tfar = ray.tmax;
-  rh.ray.time = 0;
-  rh.ray.mask = ~0u;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  return rh;
-}
 
 void embree_error(void*, RTCError code, const char* str) {
   std::fprintf(stderr, "lumis: embree error %d: %s\n", static_cast<int>(code), str ? str : "");
@@ -253,21 +235,7 @@ void Geometry::intersect16(const Ray* rays, int n, Hit* hits, bool* found) const
     const bool ok = i < n && ray_is_valid(rays[i]);
     valid[i] = ok ? -1 : 0;
     // Masked-off lanes still get a finite ray: Embree may read them.
-    const RTCRayHit r = to_embree(ok ? rays[i] : Ray{{0, 0, 0}, {0, 0, 1}, 0, 0});
-    p.ray.org_x[i] = r.ray.org_x;
-    p.ray.org_y[i] = r.ray.org_y;
-    p.ray.org_z[i] = r.ray.org_z;
-    p.ray.dir_x[i] = r.ray.dir_x;
-    p.ray.dir_y[i] = r.ray.dir_y;
-    p.ray.dir_z[i] = r.ray.dir_z;
-    p.ray.tnear[i] = r.ray.tnear;
-    p.ray.tfar[i] = r.ray.tfar;
-    p.ray.time[i] = 0;
-    p.ray.mask[i] = ~0u;
-    p.ray.id[i] = 0;
-    p.ray.flags[i] = 0;
-    p.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-    p.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    to_embree16(ok ? rays[i] : Ray{{0, 0, 0}, {0, 0, 1}, 0, 0}, p, i);
   }
   rtcIntersect16(valid, impl_->scene, &ctx, &p);
   for (int i = 0; i < n; ++i) {

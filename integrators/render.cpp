@@ -4,9 +4,6 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
-#include <tbb/task_scheduler_observer.h>
-#include <xmmintrin.h>
-#include <pmmintrin.h>
 
 #include <algorithm>
 #include <atomic>
@@ -14,23 +11,15 @@
 #include <memory>
 #include <thread>
 
+#include "core/embree_util.h"
+
 namespace lumis {
 
 namespace {
 
 constexpr int kTile = 16;  // a multiple of the packet block
-constexpr int kLanes = 16, kBlock = 4;
-
-// Embree wants flush-to-zero and denormals-are-zero on every thread that traces rays.
-class FtzObserver : public tbb::task_scheduler_observer {
- public:
-  explicit FtzObserver(tbb::task_arena& arena) : tbb::task_scheduler_observer(arena) { observe(true); }
-  ~FtzObserver() override { observe(false); }
-  void on_scheduler_entry(bool) override {
-    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-  }
-};
+constexpr int kLanes = 16, kBlock = 4;  // camera packets: 4x4 pixels, one rtcIntersect16
+static_assert(kBlock * kBlock == kLanes && kTile % kBlock == 0);
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -1,6 +1,7 @@
 // Tile-parallel rendering on TBB. Random numbers come from (pixel, sample index, seed) only, so the image is
-// bitwise identical for any thread count. Rendering proceeds in passes of whole samples per pixel, so a time
-// budget or a cancel request stops at a sample boundary with every pixel at the same count.
+// bitwise identical for any thread count. Camera rays of 4x4-pixel blocks are traced as one 16-ray packet.
+// Rendering proceeds in passes of whole samples per pixel, so a time budget or a cancel request stops at a sample
+// boundary with every pixel at the same count.
 #pragma once
 
 #include <atomic>
