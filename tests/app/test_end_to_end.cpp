@@ -12,6 +12,7 @@
 
 #include "app/scene_loader.h"
 #include "integrators/render.h"
+#include "tests/support/render_film.h"
 #include "tests/support/render_stats.h"
 
 namespace lumis {
@@ -20,14 +21,10 @@ namespace {
 std::string scene_path(const char* name) { return std::string(LUMIS_SOURCE_DIR) + "/scenes/" + name; }
 
 Film render_with(Scene& scene, int threads, uint32_t spp, bool camera_packets = true) {
-  auto in = make_integrator(scene.settings);
-  Film film(scene.settings.width, scene.settings.height, FilmOptions{true, true, true, true});
   RenderOptions ro;
-  ro.spp = spp;
   ro.threads = threads;
   ro.camera_packets = camera_packets;
-  render(scene, *in, film, ro);
-  return film;
+  return test::render_film(scene, spp, ro, FilmOptions{true, true, true, true}).film;
 }
 
 TEST(EndToEnd, BitwiseIdenticalForAnyThreadCount) {

@@ -17,6 +17,7 @@
 #include "app/json_reader.h"
 #include "app/scene_loader.h"
 #include "integrators/render.h"
+#include "tests/support/render_film.h"
 #include "tests/support/render_stats.h"
 
 namespace lumis {
@@ -33,21 +34,13 @@ std::string read_file(const std::string& path) {
   return ss.str();
 }
 
-struct Rendered {
-  Film film;
-  RenderStats stats;
-};
+using test::Rendered;
 
 Rendered render_small(Scene& scene, int size, uint32_t spp, uint32_t seed, int max_depth) {
   scene.settings.width = scene.settings.height = size;
   scene.settings.seed = seed;
   scene.settings.max_depth = max_depth;
-  auto integrator = make_integrator(scene.settings);
-  Film film(size, size);
-  RenderOptions ro;
-  ro.spp = spp;
-  const RenderStats st = render(scene, *integrator, film, ro);
-  return {std::move(film), st};
+  return test::render_film(scene, spp);
 }
 
 bool film_is_finite(const Film& film) {

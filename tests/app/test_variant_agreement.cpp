@@ -22,6 +22,7 @@
 
 #include "app/scene_loader.h"
 #include "integrators/render.h"
+#include "tests/support/render_film.h"
 #include "tests/support/render_stats.h"
 
 namespace lumis {
@@ -49,12 +50,7 @@ struct Config {
 Film render_variant(Scene& scene, const std::string& integrator, uint32_t spp, uint32_t seed) {
   scene.settings.integrator = integrator;
   scene.settings.seed = seed;
-  auto in = make_integrator(scene.settings);
-  Film film(scene.settings.width, scene.settings.height);
-  RenderOptions ro;
-  ro.spp = spp;
-  render(scene, *in, film, ro);
-  return film;
+  return test::render_film(scene, spp).film;
 }
 
 std::unique_ptr<Scene> load_small(const char* name, const Config& s) {

@@ -13,6 +13,7 @@
 
 #include "integrators/integrator.h"
 #include "integrators/render.h"
+#include "tests/support/render_film.h"
 #include "tests/support/render_stats.h"
 
 namespace lumis {
@@ -45,12 +46,7 @@ std::vector<Case> all_variants() {
 Film render_scene(Scene& scene, const std::string& integrator, SamplerType sampler, uint32_t spp) {
   scene.settings.integrator = integrator;
   scene.settings.sampler = sampler;
-  auto in = make_integrator(scene.settings);
-  Film film(scene.settings.width, scene.settings.height);
-  RenderOptions ro;
-  ro.spp = spp;
-  render(scene, *in, film, ro);
-  return film;
+  return test::render_film(scene, spp).film;
 }
 
 void expect_region(const test::RegionMean& r, double expected, const std::string& what) {
