@@ -31,7 +31,7 @@ bool make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_dir, std::optional
     wo = frame.to_local(wo_world);
     if (!(wo.z > 0)) return false;
   }
-  out.emplace(Vertex{scene, hit, frame, ng, sp.bsdf, wo, LightSampleContext{hit.p, ng}});
+  out.emplace(scene, hit, frame, ng, sp.bsdf, wo, LightSampleContext{hit.p, ng});  // built in place
   return true;
 }
 
