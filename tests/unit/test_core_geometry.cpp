@@ -1,5 +1,6 @@
 // Geometry's ray queries: the 16-ray packet query (camera rays) against the single-ray one, on a scene with a
-// triangle mesh and spheres, with hits, misses, partial packets and an invalid ray. Deterministic: no statistics.
+// triangle mesh and spheres (hits, misses, partial packets, an invalid ray), and alpha-masked surfaces under both.
+// Deterministic: no statistics.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -67,6 +68,33 @@ TEST(Geometry, PacketQueryMatchesSingleRays) {
   }
   EXPECT_GT(hits, 100);  // the test sees both outcomes
   EXPECT_GT(misses, 10);
+}
+
+// glTF alphaMode MASK: a quad whose alpha (0.2) is below its cutoff (0.5) is skipped by both queries (the filter
+// function sees single rays and 16-wide packets), so the rays reach the quad behind it.
+TEST(Geometry, AlphaMaskedSurfaceIsSkippedBySingleAndPacketQueries) {
+  Geometry g;
+  TriangleMesh front, back;
+  front.positions = {{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
+  front.indices = {0, 1, 2, 0, 2, 3};
+  front.alpha = AlphaMask{0.5f, 0.2f, std::nullopt};
+  back.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  back.indices = {0, 1, 2, 0, 2, 3};
+  const uint32_t back_id = (g.add_mesh(front), g.add_mesh(back));
+  g.commit();
+  Ray rays[16];
+  for (int i = 0; i < 16; ++i) rays[i] = {{-0.6f + 0.08f * i, 0.1f, 3}, {0, 0, -1}, 0, INFINITY};
+  Hit packed[16];
+  bool found[16];
+  g.intersect16(rays, 16, packed, found);
+  for (int i = 0; i < 16; ++i) {
+    Hit single;
+    ASSERT_TRUE(g.intersect(rays[i], single)) << i;
+    EXPECT_EQ(single.geom_id, back_id) << i;
+    ASSERT_TRUE(found[i]) << i;
+    EXPECT_EQ(packed[i].geom_id, back_id) << i;
+    EXPECT_NEAR(packed[i].t, 3, 1e-5f) << i;
+  }
 }
 
 }  // namespace
