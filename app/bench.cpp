@@ -123,7 +123,7 @@ double raw_seconds(const BenchVariantResult& v, const RawThroughput& raw, bool p
 // Medians over the repetitions; each ratio pairs a render with the raw timing of the same repetition, so that
 // slow drifts of the machine's load cancel.
 BenchVariantResult aggregate(const std::vector<BenchVariantResult>& runs, const std::vector<RawThroughput>& raws,
-                        const RawThroughput& raw_median) {
+                             const RawThroughput& raw_median) {
   BenchVariantResult v = runs.back();
   std::vector<double> wall, cpu, ratio[4];
   for (size_t r = 0; r < runs.size(); ++r) {
@@ -233,7 +233,8 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
     }
   }
   std::vector<double> single_ray_rates, packet_gain;
-  for (const BenchVariantResult& v : single_rays) single_ray_rates.push_back(double(v.samples) / std::max(v.seconds, 1e-12));
+  for (const BenchVariantResult& v : single_rays)
+    single_ray_rates.push_back(double(v.samples) / std::max(v.seconds, 1e-12));
   res.samples_per_s_single_rays = median(single_ray_rates);
   for (size_t i = 0; i < variants.size(); ++i)
     for (size_t r = 0; variants[i] == res.scaling_integrator && r < runs[i].size(); ++r)

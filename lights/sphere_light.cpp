@@ -27,7 +27,8 @@ class SphereLight final : public Light {
     const float sin_theta = safe_sqrt(one_minus_z * (2 - one_minus_z));
     const float phi = 2 * kPi * u.x - kPi;
     // Unit up to rounding: z^2 + sin_theta^2 = 1 and the frame is orthonormal.
-    const Vec3 wi = Frame::from_normal(to_c * inv_d).to_world({std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, z});
+    const Frame frame = Frame::from_normal(to_c * inv_d);
+    const Vec3 wi = frame.to_world({std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, z});
     // Nearest intersection of the ray with the sphere; the discriminant is >= 0 up to rounding inside the cap.
     const float t = std::max(0.0f, d * z - safe_sqrt(r_ * r_ - d2 * sin_theta * sin_theta));
     LightSample s;
