@@ -4,12 +4,8 @@
 # a glTF that `lumis render` loads. Speeds are not checked (shared machines). Usage: bench.sh path/to/lumis
 set -uo pipefail
 LUMIS=${1:?usage: bench.sh path/to/lumis}
-SRC=${LUMIS_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
-[ -f "$SRC/scenes/cornell-sphere.json" ] || { echo "skip: scenes missing"; exit 77; }
+source "$(dirname "$0")/common.bash"
 command -v python3 >/dev/null || { echo "skip: python3 needed to check the JSON"; exit 77; }
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
 
 "$LUMIS" bench --quick --threads 2 --json "$T/bench.json" >"$T/out" 2>"$T/err" ||
   { cat "$T/out" "$T/err"; fail "lumis bench --quick exited $?"; }

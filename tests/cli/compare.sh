@@ -4,18 +4,7 @@
 # script runs in headless Chromium. Usage: compare.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: compare.sh path/to/lumis}
-SRC=${LUMIS_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
-SCENE="$SRC/scenes/cornell-sphere.json"
-[ -f "$SCENE" ] || { echo "skip: $SCENE missing"; exit 77; }
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
-expect() {
-  local want=$1; shift
-  "$@" >"$T/out" 2>"$T/err"
-  local got=$?
-  [ "$got" = "$want" ] || { cat "$T/out" "$T/err"; fail "exit $got, expected $want: $*"; }
-}
+source "$(dirname "$0")/common.bash"
 SMALL=(--width 32 --height 32 --max-depth 2 --reference-spp 64)
 VARIANTS=(uniform bsdf light mis nee_mis)
 

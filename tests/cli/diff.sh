@@ -3,20 +3,7 @@
 # on tiny renders of the built-in scene. Usage: diff.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: diff.sh path/to/lumis}
-SRC=${LUMIS_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
-SCENE="$SRC/scenes/cornell-sphere.json"
-[ -f "$SCENE" ] || { echo "skip: $SCENE missing"; exit 77; }
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
-
-# expect CODE CMD...: run CMD (stdout to $T/out, stderr to $T/err) and check its exit status.
-expect() {
-  local want=$1; shift
-  "$@" >"$T/out" 2>"$T/err"
-  local got=$?
-  [ "$got" = "$want" ] || { cat "$T/out" "$T/err"; fail "exit $got, expected $want: $*"; }
-}
+source "$(dirname "$0")/common.bash"
 
 R=(render "$SCENE" --width 16 --height 16 --spp 8 -q)
 expect 0 "$LUMIS" "${R[@]}" --max-depth 3 --seed 1 -o "$T/a.exr"

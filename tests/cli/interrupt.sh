@@ -5,13 +5,9 @@
 # Usage: interrupt.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: interrupt.sh path/to/lumis}
-SRC=${LUMIS_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
-SCENE="$SRC/scenes/cornell-sphere.json"
-[ -f "$SCENE" ] || { echo "skip: $SCENE missing"; exit 77; }
+source "$(dirname "$0")/common.bash"
 command -v iinfo >/dev/null || { echo "skip: iinfo (openimageio-tools) missing"; exit 77; }
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fail() { echo "FAIL: $*"; [ -f "$T/err" ] && sed 's/^/    /' "$T/err"; exit 1; }
+fail() { echo "FAIL: $*"; [ -f "$T/err" ] && sed 's/^/    /' "$T/err"; exit 1; }  # with lumis's messages
 
 # attr FILE NAME: the value of a string attribute in the image header.
 attr() { iinfo -v "$1" | sed -n "s/^ *$2: \"\(.*\)\"$/\1/p"; }
