@@ -8,7 +8,7 @@ source "$(dirname "$0")/common.bash"
 command -v python3 >/dev/null || { echo "skip: python3 needed to check the JSON"; exit 77; }
 
 "$LUMIS" bench --quick --threads 2 --json "$T/bench.json" >"$T/out" 2>"$T/err" ||
-  { cat "$T/out" "$T/err"; fail "lumis bench --quick exited $?"; }
+  { rc=$?; cat "$T/out" "$T/err"; fail "lumis bench --quick exited $rc"; }
 grep -q "Raw Embree" "$T/out" || fail "no raw-throughput table: $(cat "$T/out")"
 grep -q "Targets" "$T/out" || fail "no targets section: $(cat "$T/out")"
 
