@@ -18,6 +18,7 @@
 #include "app/scene_error.h"
 #include "core/image_io.h"
 #include "tests/app/gltf_test_util.h"
+#include "tests/support/test_dir.h"
 
 namespace fs = std::filesystem;
 using namespace lumis;
@@ -60,12 +61,7 @@ struct Bin {
 
 class GltfFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("lumis_gltf_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::fresh_test_dir("lumis_gltf"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   std::string write(const std::string& name, const std::string& text) {

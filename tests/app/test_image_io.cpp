@@ -9,6 +9,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/image_io.h"
+#include "tests/support/test_dir.h"
 
 namespace fs = std::filesystem;
 using namespace lumis;
@@ -18,12 +19,7 @@ namespace {
 /// A fresh, empty folder per test, removed afterwards.
 class ImageIoTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("lumis_image_io_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::fresh_test_dir("lumis_image_io"); }
   void TearDown() override { fs::remove_all(dir_); }
   /// Empty the folder again (each block of a test starts from nothing).
   void reset() {

@@ -23,6 +23,7 @@
 #include "app/scene_loader.h"
 #include "integrators/render.h"
 #include "tests/support/render_film.h"
+#include "tests/support/test_dir.h"
 #include "tests/support/render_stats.h"
 
 namespace lumis {
@@ -61,10 +62,11 @@ std::unique_ptr<Scene> load_small(const char* name, const Config& s) {
     const size_t at = text.find(s.edit_from);
     if (at == std::string::npos) throw std::runtime_error(path + " has no " + s.edit_from);
     text.replace(at, s.edit_from.size(), s.edit_to);
-    path = (std::filesystem::temp_directory_path() / ("lumis-agreement-" + std::string(name))).string();
+    path = (test::fresh_test_dir("lumis_agreement") / name).string();
     std::ofstream(path) << text;
   }
   auto scene = load_scene(path);
+  if (!s.edit_from.empty()) std::filesystem::remove_all(std::filesystem::path(path).parent_path());  // loaded
   const float aspect = static_cast<float>(scene->settings.width) / static_cast<float>(scene->settings.height);
   scene->settings.height = s.size;
   scene->settings.width = std::max(4, static_cast<int>(std::lround(s.size * aspect)) / 4 * 4);
