@@ -17,6 +17,10 @@ namespace lumis {
 
 /// A scattering vertex, shaded and oriented: frame.n and ng face the side the path arrived from.
 struct Vertex {
+  /// Members in order (a constructor, not aggregate init: clang 14 has no parenthesised aggregate init for emplace).
+  Vertex(const Scene& scene_, const Hit& hit_, const Frame& frame_, Vec3 ng_, const Bsdf& bsdf_, Vec3 wo_,
+         LightSampleContext ctx_)
+      : scene(scene_), hit(hit_), frame(frame_), ng(ng_), bsdf(bsdf_), wo(wo_), ctx(ctx_) {}
   const Scene& scene;
   const Hit& hit;
   Frame frame;               ///< shading frame (world <-> local), flipped toward wo
