@@ -81,13 +81,15 @@ double cpu_seconds() {
 
 // One render of scene.settings.integrator: wall and CPU time, rays by kind (the counts are the same every time: the
 // random numbers depend only on pixel, sample index and seed).
-BenchVariantResult render_once(const Scene& scene, int threads, bool camera_packets = true) {
+BenchVariantResult render_once(const Scene& scene, int threads, bool camera_packets = true,
+                               bool shadow_packets = true) {
   const std::unique_ptr<Integrator> integrator = make_integrator(scene.settings);
   Film film(scene.settings.width, scene.settings.height, FilmOptions{false, false, false, false});
   RenderOptions ro;
   ro.spp = scene.settings.spp;
   ro.threads = threads;
   ro.camera_packets = camera_packets;
+  ro.shadow_packets = shadow_packets;
   const double c0 = cpu_seconds();
   const RenderStats st = render(scene, *integrator, film, ro);
   BenchVariantResult v;
@@ -198,7 +200,7 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   res.scaling_integrator = o.overrides.integrator ? *o.overrides.integrator : "nee_mis";
   const size_t rays = o.raw_rays ? o.raw_rays : (o.quick ? size_t(1) << 12 : size_t(1) << 19);
   std::vector<std::vector<BenchVariantResult>> runs(variants.size());
-  std::vector<BenchVariantResult> single, single_rays;
+  std::vector<BenchVariantResult> single, no_camera_packets, no_shadow_packets;
   std::vector<RawThroughput> raws;
   std::unique_ptr<RawBench> raw;
   // Repetitions outermost: the renders and the raw timings they are compared with see the same machine load.
@@ -210,7 +212,8 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
     }
     s.integrator = res.scaling_integrator;
     single.push_back(render_once(*scene, 1));
-    single_rays.push_back(render_once(*scene, threads, /*camera_packets=*/false));
+    no_camera_packets.push_back(render_once(*scene, threads, /*camera_packets=*/false, true));
+    no_shadow_packets.push_back(render_once(*scene, threads, true, /*shadow_packets=*/false));
     if (r == 0) {  // the peak of loading and rendering, before the raw benchmark's ray buffers exist
       res.peak_rss = proc_status_bytes("VmHWM");
       raw = std::make_unique<RawBench>(*scene, s.width, s.height, threads, rays);
@@ -232,14 +235,19 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
       if (v.cpu_seconds > 0 && single[r].cpu_seconds > 0) cpu_eff.push_back(single[r].cpu_seconds / v.cpu_seconds);
     }
   }
-  std::vector<double> single_ray_rates, packet_gain;
-  for (const BenchVariantResult& v : single_rays)
-    single_ray_rates.push_back(double(v.samples) / std::max(v.seconds, 1e-12));
-  res.samples_per_s_single_rays = median(single_ray_rates);
-  for (size_t i = 0; i < variants.size(); ++i)
-    for (size_t r = 0; variants[i] == res.scaling_integrator && r < runs[i].size(); ++r)
-      if (runs[i][r].cpu_seconds > 0) packet_gain.push_back(single_rays[r].cpu_seconds / runs[i][r].cpu_seconds);
-  res.packet_speedup_cpu = median(packet_gain);
+  const auto packet_gain = [&](const std::vector<BenchVariantResult>& without) {
+    SceneResult::PacketGain g;
+    std::vector<double> rates, gain;
+    for (const BenchVariantResult& v : without) rates.push_back(double(v.samples) / std::max(v.seconds, 1e-12));
+    g.samples_per_s_without = median(rates);
+    for (size_t i = 0; i < variants.size(); ++i)
+      for (size_t r = 0; variants[i] == res.scaling_integrator && r < runs[i].size(); ++r)
+        if (runs[i][r].cpu_seconds > 0) gain.push_back(without[r].cpu_seconds / runs[i][r].cpu_seconds);
+    g.speedup_cpu = median(gain);
+    return g;
+  };
+  res.camera_packets = packet_gain(no_camera_packets);
+  res.shadow_packets = packet_gain(no_shadow_packets);
   res.cpu_utilisation = median(utilisation);
   res.cpu_efficiency = median(cpu_eff);
   if (res.triangles >= 10000 && res.peak_rss > res.baseline_rss)

@@ -113,9 +113,12 @@ struct SceneResult {
   /// Samples per CPU-second with `threads` threads over the same with one: the parallel overhead alone, which a
   /// shared machine cannot hide (wall-clock speedup needs idle cores).
   double cpu_efficiency = 0;
-  /// The scaling integrator with camera rays traced one by one (RenderOptions::camera_packets off), `threads`
-  /// threads: samples/s, and the packet renders' samples per CPU-second over these (median of paired runs).
-  double samples_per_s_single_rays = 0, packet_speedup_cpu = 0;
+  /// The scaling integrator, `threads` threads, with one kind of packet query turned off (camera rays:
+  /// RenderOptions::camera_packets; shadow rays: shadow_packets): samples/s, and the default renders' samples per
+  /// CPU-second over these (the packets' gain, median of paired runs).
+  struct PacketGain {
+    double samples_per_s_without = 0, speedup_cpu = 0;
+  } camera_packets, shadow_packets;
 };
 
 struct BenchReport {

@@ -259,6 +259,20 @@ bool Geometry::occluded(const Ray& ray) const {
   return r.tfar < 0;  // Embree sets tfar = -inf on an occluded ray
 }
 
+void Geometry::occluded16(const Ray* rays, int n, bool* occluded) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  alignas(64) RTCRayHit16 p;
+  alignas(64) int valid[16];
+  for (int i = 0; i < 16; ++i) {
+    const bool ok = i < n && ray_is_valid(rays[i]);
+    valid[i] = ok ? -1 : 0;
+    to_embree16(ok ? rays[i] : Ray{{0, 0, 0}, {0, 0, 1}, 0, 0}, p, i);  // masked-off lanes: finite too
+  }
+  rtcOccluded16(valid, impl_->scene, &ctx, reinterpret_cast<RTCRay16*>(&p.ray));
+  for (int i = 0; i < n; ++i) occluded[i] = !valid[i] || p.ray.tfar[i] < 0;  // invalid: as occluded() says
+}
+
 namespace {
 struct CollectContext {
   RTCIntersectContext base;  // first member: Embree passes &base to the filter

@@ -100,6 +100,8 @@ class Geometry {
   void intersect16(const Ray* rays, int n, Hit* hits, bool* found) const;
   /// Whether anything lies in (ray.tmin, ray.tmax).
   bool occluded(const Ray& ray) const;
+  /// occluded(rays[i]) for i < n (n <= 16) in one Embree packet query (shadow rays of neighbouring paths).
+  void occluded16(const Ray* rays, int n, bool* occluded) const;
   /// Every intersection of the ray with geometry that carries a light (light >= 0), ignoring all other geometry
   /// and occlusion, in any order; at most max_hits are stored, the return value is the number found. The
   /// one-sample MIS density needs every light whose solid angle contains a direction, visible or not.

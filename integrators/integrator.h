@@ -19,18 +19,26 @@ struct PathCounters {
   uint64_t light_queries = 0;  ///< of which all-light-hit queries (one-sample MIS density), for `lumis bench`
 };
 
-/// The camera ray's closest hit, when the renderer has traced it already (camera rays go in 16-ray packets).
-struct PrimaryHit {
-  const Hit* hit = nullptr;  ///< null: the ray escaped
+/// Up to kMaxLanes camera rays (one sample each of neighbouring pixels) whose paths an integrator traces in
+/// lockstep, one bounce of all lanes at a time, so that each bounce's queries can go to Embree as one packet.
+/// Every lane keeps its own sampler, so a lane's estimate does not depend on its neighbours.
+struct PathBatch {
+  static constexpr int kMaxLanes = 16;
+  int n = 0;                             ///< lanes, 1..kMaxLanes
+  const Ray* rays = nullptr;             ///< camera rays (world)
+  const Hit* const* primary = nullptr;   ///< per lane: the camera ray's closest hit, null if it escaped; a null
+                                         ///< array: li traces the camera rays itself
+  Sampler* samplers = nullptr;           ///< per lane, started at the lane's pixel and sample index
+  AovSample* aov = nullptr;              ///< per lane first-hit data (may be null)
+  Color* radiance = nullptr;             ///< out: per lane radiance estimate
+  bool shadow_packets = true;            ///< trace a bounce's shadow rays with one 16-wide query (false: one by one)
 };
 
 class Integrator {
  public:
   virtual ~Integrator() = default;
-  /// Radiance (W / (m^2 sr)) arriving along the camera ray, one sample. primary (may be null: li traces the ray)
-  /// is the ray's closest hit; aov (may be null) receives first-hit data.
-  virtual Color li(const Scene& scene, const Ray& ray, const PrimaryHit* primary, Sampler& sampler, AovSample* aov,
-                   PathCounters& counters) const = 0;
+  /// Radiance (W / (m^2 sr)) arriving along each camera ray of the batch, one sample each.
+  virtual void li(const Scene& scene, const PathBatch& batch, PathCounters& counters) const = 0;
   virtual const char* name() const = 0;
 };
 

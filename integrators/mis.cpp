@@ -14,7 +14,7 @@ struct MisVariant {
   float c_light;  // c_l: probability of the light strategy
 
   Color emission_weight(const PathState&, const Scene&, int, const Hit*, Vec3) const { return Color(1); }
-  Color direct(const Vertex&, float, Vec2, PathCounters&) const { return {}; }
+  std::optional<ShadowQuery> direct(const Vertex&, float, Vec2, PathCounters&) const { return std::nullopt; }
   std::optional<Scatter> scatter(const Vertex& v, float u_choice, Vec2 u_light, float u_lobe, Vec2 u,
                                  PathCounters& c) const {
     const float c_l = v.scene.lights.empty() ? 0.0f : c_light;

@@ -35,26 +35,25 @@ bool make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_dir, std::optional
   return true;
 }
 
-Color estimate_direct(const Vertex& v, float u_choice, Vec2 u_light, bool mis_weighted, MisHeuristic heuristic,
-                      PathCounters& counters) {
+std::optional<ShadowQuery> sample_direct(const Vertex& v, float u_choice, Vec2 u_light, bool mis_weighted,
+                                        MisHeuristic heuristic, PathCounters& counters) {
   const Scene& scene = v.scene;
   const std::optional<LightChoice> choice = scene.light_selector.sample(v.ctx, u_choice);
-  if (!choice) return {};
+  if (!choice) return std::nullopt;
   const Light& light = *scene.lights[choice->index];
   const std::optional<LightSample> ls = light.sample(v.ctx, u_light);
-  if (!ls || !(ls->pdf > 0) || is_black(ls->le)) return {};
+  if (!ls || !(ls->pdf > 0) || is_black(ls->le)) return std::nullopt;
   // Shading-normal rule: light arriving from below the geometric surface does not reflect (no light leaks).
-  if (dot(ls->wi, v.ng) <= 0) return {};
+  if (dot(ls->wi, v.ng) <= 0) return std::nullopt;
   const Vec3 wi = v.frame.to_local(ls->wi);
   const Color f = v.bsdf.f(v.wo, wi);
-  if (is_black(f)) return {};
+  if (is_black(f)) return std::nullopt;
   ++counters.rays;
   ++counters.shadow_rays;
-  const Ray shadow = std::isinf(ls->dist) ? spawn_ray(v.hit, ls->wi) : spawn_ray_to(v.hit, ls->p_light);
-  if (scene.geometry.occluded(shadow)) return {};
   const float pdf_light = choice->pmf * ls->pdf;
   const float w = mis_weighted ? mis_weight(pdf_light, v.bsdf.pdf(v.wo, wi), heuristic) : 1.0f;
-  return f * ls->le * (std::abs(wi.z) * w / pdf_light);
+  return ShadowQuery{std::isinf(ls->dist) ? spawn_ray(v.hit, ls->wi) : spawn_ray_to(v.hit, ls->p_light),
+                     f * ls->le * (std::abs(wi.z) * w / pdf_light)};
 }
 
 float light_pdf_for_hit(const Scene& scene, const LightSampleContext& ctx, int light, const Hit* on_light, Vec3 dir) {

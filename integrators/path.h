@@ -2,11 +2,16 @@
 // vertices is the previous vertex's receiver context and the densities its direction was drawn with.
 // A variant supplies three hooks (see the variant files):
 //   Color emission_weight(const PathState& prev, const Scene&, int light, const Hit* on_light, Vec3 dir) const;
-//   Color direct(const Vertex& v, float u_choice, Vec2 u_light, PathCounters& c) const;  // NEE (or zero)
+//   std::optional<ShadowQuery> direct(const Vertex& v, float u_choice, Vec2 u_light, PathCounters& c) const;
+//                                                                   // NEE: the shadow ray and its value, or none
 //   std::optional<Scatter> scatter(const Vertex& v, float u_choice, Vec2 u_light, float u_lobe, Vec2 u_dir,
 //                                  PathCounters& c) const;
 // Sampler dimensions per vertex are consumed in a fixed order whatever the variant, so stratification lines up:
 // light choice (1D), light position (2D), BSDF/strategy choice (1D), direction (2D), Russian roulette (1D).
+// The paths of a PathBatch (up to 16 neighbouring pixels) advance in lockstep, one bounce of every live lane at a
+// time: closest hits, then shading of each lane (its next-event estimate is held as a ShadowQuery), then all of the
+// bounce's shadow rays in one Embree packet. Each lane has its own sampler and state, so its estimate is the one
+// it would get alone (tests/app/test_end_to_end.cpp checks this bit for bit).
 #pragma once
 
 #include <optional>
@@ -47,10 +52,17 @@ struct Scatter {
 /// Balance (lecture) or power heuristic weight of strategy a against b; 0 when both vanish or are not finite.
 float mis_weight(float pdf_a, float pdf_b, MisHeuristic heuristic);
 
-/// One next-event-estimation sample at v: light chosen by the scene's selector, its sample, the shadow ray.
-/// Returns f |cos| Le / (pmf pdf_light) times the MIS weight against BSDF sampling when mis_weighted.
-Color estimate_direct(const Vertex& v, float u_choice, Vec2 u_light, bool mis_weighted, MisHeuristic heuristic,
-                      PathCounters& counters);
+/// A next-event-estimation sample waiting for its shadow ray: value counts when ray is unoccluded.
+struct ShadowQuery {
+  Ray ray;      ///< from the vertex to the light point (world)
+  Color value;  ///< f |cos| Le / (pmf pdf_light), times the MIS weight when asked (pdf_light: solid angle)
+};
+
+/// One next-event-estimation sample at v: light chosen by the scene's selector, its sample, the shadow ray to
+/// trace; nullopt when the sample contributes nothing whatever the visibility. MIS-weighted against BSDF sampling
+/// when mis_weighted.
+std::optional<ShadowQuery> sample_direct(const Vertex& v, float u_choice, Vec2 u_light, bool mis_weighted,
+                                         MisHeuristic heuristic, PathCounters& counters);
 
 /// Density of light sampling in direction wi from ctx (solid angle): sum over every light whose solid angle
 /// contains wi of pmf(light) x pdf(light), visible or not. Used by the one-sample MIS combination.
@@ -74,63 +86,121 @@ class PathIntegrator final : public Integrator {
 
   const char* name() const override { return name_; }
 
-  Color li(const Scene& scene, const Ray& camera_ray, const PrimaryHit* primary, Sampler& sampler, AovSample* aov,
-           PathCounters& counters) const override {
-    Color radiance(0), beta(1);
-    PathState prev;
-    Ray ray = camera_ray;
-    for (int bounce = 0;; ++bounce) {
+  void li(const Scene& scene, const PathBatch& batch, PathCounters& counters) const override {
+    constexpr int kLanes = PathBatch::kMaxLanes;
+    struct Lane {
+      Color beta{1};
+      PathState prev;
+      Ray ray;
       Hit hit;
-      ++counters.rays;
-      const bool found = bounce == 0 && primary ? primary->hit != nullptr : scene.geometry.intersect(ray, hit);
-      if (bounce == 0 && primary && found) hit = *primary->hit;
-      if (!found) {
-        if (scene.environment >= 0) {
-          const Color le = scene.lights[scene.environment]->le_escaped(ray.d);
-          if (!is_black(le))
-            radiance += beta * le * variant_.emission_weight(prev, scene, scene.environment, nullptr, ray.d);
-        }
-        if (bounce == 0 && aov) *aov = AovSample{Color(0), Vec3(0), 0};
-        break;
-      }
-      if (hit.light >= 0) {
-        const Color le = scene.lights[hit.light]->le(hit, -ray.d);
-        if (!is_black(le)) radiance += beta * le * variant_.emission_weight(prev, scene, hit.light, &hit, ray.d);
-      }
-      std::optional<Vertex> v;
-      const bool can_scatter = make_vertex(scene, hit, ray.d, v);
-      if (bounce == 0 && aov) {
-        aov->albedo = hit.material >= 0 ? scene.materials[hit.material]->albedo(hit) : Color(0);
-        aov->normal = can_scatter ? v->frame.n : hit.ng;
-        aov->depth = hit.t * length(ray.d);
-      }
-      if (bounce >= max_depth_ || !can_scatter) break;
-
-      // Dimensions: light choice, light position, strategy/lobe choice, direction, roulette (fixed order).
-      const float u_choice = sampler.get1d();
-      const Vec2 u_light = sampler.get2d();
-      const float u_lobe = sampler.get1d();
-      const Vec2 u_dir = sampler.get2d();
-      const float u_rr = sampler.get1d();
-
-      radiance += beta * variant_.direct(*v, u_choice, u_light, counters);
-      const std::optional<Scatter> s = variant_.scatter(*v, u_choice, u_light, u_lobe, u_dir, counters);
-      if (!s || is_black(s->weight) || !is_finite(s->weight)) break;
-      beta *= s->weight;
-      prev = {false, v->ctx, s->pdf_bsdf};
-
-      // Unbiased Russian roulette: survive with probability q, divide by q.
-      if (rr_depth_ > 0 && bounce + 1 >= rr_depth_) {
-        const float q = std::min(0.95f, max_component(beta));
-        if (u_rr >= q) break;
-        beta /= q;
-      }
-      ray = spawn_ray(hit, s->wi);
+      bool alive = true;
+    };
+    Lane lanes[kLanes];
+    const int n = std::min(batch.n, kLanes);
+    for (int k = 0; k < n; ++k) {
+      lanes[k].ray = batch.rays[k];
+      batch.radiance[k] = Color(0);
     }
-    return radiance;
+    bool found[kLanes];
+    Ray rays[kLanes];
+    ShadowQuery shadow[kLanes];
+    bool occluded[kLanes];
+    int owner[kLanes];  // lane of each shadow ray
+    for (int bounce = 0;; ++bounce) {
+      // Closest hits of every live lane.
+      int live = 0;
+      for (int k = 0; k < n; ++k) live += lanes[k].alive;
+      if (live == 0) break;
+      counters.rays += live;
+      if (bounce == 0 && batch.primary) {
+        for (int k = 0; k < n; ++k) {
+          found[k] = batch.primary[k] != nullptr;
+          if (found[k]) lanes[k].hit = *batch.primary[k];
+        }
+      } else {  // bounce rays one by one: 16-wide packets of them measured no faster (docs/performance.md)
+        for (int k = 0; k < n; ++k)
+          if (lanes[k].alive) found[k] = scene.geometry.intersect(lanes[k].ray, lanes[k].hit);
+      }
+
+      // Shade each live lane; its next-event estimate waits in `shadow`.
+      int n_shadow = 0;
+      for (int k = 0; k < n; ++k) {
+        Lane& lane = lanes[k];
+        if (!lane.alive) continue;
+        bool has_shadow = false;
+        lane.alive = shade(scene, bounce, lane.ray, found[k], lane.hit, lane.beta, lane.prev, batch.radiance[k],
+                           batch.samplers[k], bounce == 0 && batch.aov ? &batch.aov[k] : nullptr, shadow[n_shadow],
+                           has_shadow, counters);
+        if (has_shadow) owner[n_shadow++] = k;
+      }
+
+      // Shadow rays of this bounce.
+      if (n_shadow == 0) continue;
+      if (batch.shadow_packets && n_shadow > 1) {
+        for (int i = 0; i < n_shadow; ++i) rays[i] = shadow[i].ray;
+        scene.geometry.occluded16(rays, n_shadow, occluded);
+      } else {
+        for (int i = 0; i < n_shadow; ++i) occluded[i] = scene.geometry.occluded(shadow[i].ray);
+      }
+      for (int i = 0; i < n_shadow; ++i)
+        if (!occluded[i]) batch.radiance[owner[i]] += shadow[i].value;
+    }
   }
 
  private:
+  // One vertex of one lane: emission, AOV, next-event sample (when has_shadow, `shadow` holds it, its value
+  // already times beta), continuation (ray, beta, prev updated). Returns whether the path goes on.
+  bool shade(const Scene& scene, int bounce, Ray& ray, bool found, const Hit& hit, Color& beta, PathState& prev,
+             Color& radiance, Sampler& sampler, AovSample* aov, ShadowQuery& shadow, bool& has_shadow,
+             PathCounters& counters) const {
+    if (!found) {
+      if (scene.environment >= 0) {
+        const Color le = scene.lights[scene.environment]->le_escaped(ray.d);
+        if (!is_black(le))
+          radiance += beta * le * variant_.emission_weight(prev, scene, scene.environment, nullptr, ray.d);
+      }
+      if (aov) *aov = AovSample{Color(0), Vec3(0), 0};
+      return false;
+    }
+    if (hit.light >= 0) {
+      const Color le = scene.lights[hit.light]->le(hit, -ray.d);
+      if (!is_black(le)) radiance += beta * le * variant_.emission_weight(prev, scene, hit.light, &hit, ray.d);
+    }
+    std::optional<Vertex> v;
+    const bool can_scatter = make_vertex(scene, hit, ray.d, v);
+    if (aov) {
+      aov->albedo = hit.material >= 0 ? scene.materials[hit.material]->albedo(hit) : Color(0);
+      aov->normal = can_scatter ? v->frame.n : hit.ng;
+      aov->depth = hit.t * length(ray.d);
+    }
+    if (bounce >= max_depth_ || !can_scatter) return false;
+
+    // Dimensions: light choice, light position, strategy/lobe choice, direction, roulette (fixed order).
+    const float u_choice = sampler.get1d();
+    const Vec2 u_light = sampler.get2d();
+    const float u_lobe = sampler.get1d();
+    const Vec2 u_dir = sampler.get2d();
+    const float u_rr = sampler.get1d();
+
+    if (std::optional<ShadowQuery> q = variant_.direct(*v, u_choice, u_light, counters)) {
+      shadow = {q->ray, beta * q->value};
+      has_shadow = true;
+    }
+    const std::optional<Scatter> s = variant_.scatter(*v, u_choice, u_light, u_lobe, u_dir, counters);
+    if (!s || is_black(s->weight) || !is_finite(s->weight)) return false;
+    beta *= s->weight;
+    prev = {false, v->ctx, s->pdf_bsdf};
+
+    // Unbiased Russian roulette: survive with probability q, divide by q.
+    if (rr_depth_ > 0 && bounce + 1 >= rr_depth_) {
+      const float q = std::min(0.95f, max_component(beta));
+      if (u_rr >= q) return false;
+      beta /= q;
+    }
+    ray = spawn_ray(hit, s->wi);
+    return true;
+  }
+
   int max_depth_, rr_depth_;
   Variant variant_;
   const char* name_;

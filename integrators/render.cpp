@@ -41,7 +41,6 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   const uint32_t seed = scene.settings.seed;
   const uint32_t spp = std::max(1u, options.spp);
   const bool packets = options.camera_packets;
-  const int block = packets ? kBlock : 1;
 
   tbb::enumerable_thread_specific<PathCounters> counters;
   RenderStats stats;
@@ -60,20 +59,30 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
       tbb::parallel_for(tbb::blocked_range<int>(0, n_tiles, 1), [&](const tbb::blocked_range<int>& r) {
         pass_sync.load(std::memory_order_acquire);
         PathCounters& local = counters.local();
-        // A block of pixels shares each sample index: their camera rays form one packet. Each pixel keeps its own
+        // A block of pixels shares each sample index: their paths form one PathBatch. Each pixel keeps its own
         // sampler, so the numbers (and the image) are those of one-by-one tracing.
         Sampler samplers[kLanes];
         for (Sampler& s : samplers) s = Sampler(sampler_type, spp, seed);
         Ray rays[kLanes];
-        PrimaryHit primary[kLanes];
+        const Hit* primary[kLanes];
         Hit hits[kLanes];
         bool found[kLanes];
+        AovSample aov[kLanes];
+        Color radiance[kLanes];
+        PathBatch batch;
+        batch.rays = rays;
+        batch.primary = packets ? primary : nullptr;
+        batch.samplers = samplers;
+        batch.aov = aov;
+        batch.radiance = radiance;
+        batch.shadow_packets = options.shadow_packets;
         for (int tile = r.begin(); tile < r.end(); ++tile) {
           const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
           const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
-          for (int by = y0; by < y1; by += block)
-            for (int bx = x0; bx < x1; bx += block) {
-              const int w = std::min(block, x1 - bx), h = std::min(block, y1 - by), n = w * h;
+          for (int by = y0; by < y1; by += kBlock)
+            for (int bx = x0; bx < x1; bx += kBlock) {
+              const int w = std::min(kBlock, x1 - bx), h = std::min(kBlock, y1 - by), n = w * h;
+              batch.n = n;
               for (uint32_t i = begin; i < end; ++i) {
                 for (int k = 0; k < n; ++k) {
                   const int x = bx + k % w, y = by + k / w;
@@ -83,14 +92,10 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
                 }
                 if (packets) {
                   scene.geometry.intersect16(rays, n, hits, found);
-                  for (int k = 0; k < n; ++k) primary[k].hit = found[k] ? &hits[k] : nullptr;
+                  for (int k = 0; k < n; ++k) primary[k] = found[k] ? &hits[k] : nullptr;
                 }
-                for (int k = 0; k < n; ++k) {
-                  AovSample aov;
-                  const Color l = integrator.li(scene, rays[k], packets ? &primary[k] : nullptr, samplers[k], &aov,
-                                                local);
-                  film.add(bx + k % w, by + k / w, l, &aov);
-                }
+                integrator.li(scene, batch, local);
+                for (int k = 0; k < n; ++k) film.add(bx + k % w, by + k / w, radiance[k], &aov[k]);
               }
             }
         }

@@ -1,5 +1,6 @@
 // Tile-parallel rendering on TBB. Random numbers come from (pixel, sample index, seed) only, so the image is
-// bitwise identical for any thread count. Camera rays of 4x4-pixel blocks are traced as one 16-ray packet.
+// bitwise identical for any thread count. The paths of a 4x4-pixel block are traced in lockstep (PathBatch): its
+// camera rays go to Embree as one 16-ray packet, and so do each bounce's shadow rays.
 // Rendering proceeds in passes of whole samples per pixel, so a time budget or a cancel request stops at a sample
 // boundary with every pixel at the same count.
 #pragma once
@@ -24,6 +25,7 @@ struct RenderOptions {
   double time_budget = 0;                 ///< seconds; 0 = render all spp
   int threads = 0;                        ///< 0 = all cores
   bool camera_packets = true;             ///< trace camera rays in 4x4-pixel packets of 16 (false: one by one)
+  bool shadow_packets = true;             ///< trace each bounce's shadow rays of a 4x4 block as one packet
   const std::atomic<bool>* cancel = nullptr;
   std::function<void(const RenderProgress&)> on_progress;  ///< called from the calling thread between tiles
 };

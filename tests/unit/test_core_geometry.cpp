@@ -1,5 +1,6 @@
-// Geometry's ray queries: the 16-ray packet query (camera rays) against the single-ray one, on a scene with a
-// triangle mesh and spheres (hits, misses, partial packets, an invalid ray), and alpha-masked surfaces under both.
+// Geometry's ray queries: the 16-ray packet queries (camera rays, shadow rays) against the single-ray ones, on a
+// scene with a triangle mesh and spheres (hits, misses, partial packets, an invalid ray), and alpha-masked
+// surfaces under both.
 // Deterministic: no statistics.
 #include <gtest/gtest.h>
 
@@ -70,6 +71,36 @@ TEST(Geometry, PacketQueryMatchesSingleRays) {
   EXPECT_GT(misses, 10);
 }
 
+// Shadow rays of neighbouring paths in one packet: occluded16 answers as occluded() does, for rays from points on
+// the quad toward random points above it (some blocked by the spheres, some not, some ending just short of a
+// sphere), partial packets, and an invalid ray (occluded, as occluded() says).
+TEST(Geometry, ShadowPacketMatchesSingleRays) {
+  Geometry g;
+  build_scene(g);
+  Pcg32 rng(3, 5);
+  int blocked = 0, clear = 0;
+  for (int packet = 0; packet < 64; ++packet) {
+    const int n = packet % 4 == 3 ? 1 + packet % 16 : 16;
+    Ray rays[16];
+    for (int i = 0; i < n; ++i) {
+      const Vec3 from(rng.next_float() * 3 - 1.5f, rng.next_float() * 3 - 1.5f, 0);
+      const Vec3 to(rng.next_float() * 2 - 1, rng.next_float() * 2 - 1, 2);
+      rays[i] = {from, to - from, 1e-4f, rng.next_float() < 0.2f ? 0.3f : 1 - 1e-4f};
+    }
+    if (packet == 6) rays[4].o = {INFINITY, 0, 0};
+    bool packed[16];
+    g.occluded16(rays, n, packed);
+    for (int i = 0; i < n; ++i) {
+      const bool single = g.occluded(rays[i]);
+      ASSERT_EQ(single, packed[i]) << "packet " << packet << " lane " << i;
+      (single ? blocked : clear) += 1;
+    }
+    if (packet == 6) EXPECT_TRUE(packed[4]);
+  }
+  EXPECT_GT(blocked, 50);  // the test sees both outcomes
+  EXPECT_GT(clear, 200);
+}
+
 // glTF alphaMode MASK: a quad whose alpha (0.2) is below its cutoff (0.5) is skipped by both queries (the filter
 // function sees single rays and 16-wide packets), so the rays reach the quad behind it.
 TEST(Geometry, AlphaMaskedSurfaceIsSkippedBySingleAndPacketQueries) {
@@ -95,6 +126,18 @@ TEST(Geometry, AlphaMaskedSurfaceIsSkippedBySingleAndPacketQueries) {
     EXPECT_EQ(packed[i].geom_id, back_id) << i;
     EXPECT_NEAR(packed[i].t, 3, 1e-5f) << i;
   }
+  // Shadow rays ending between the two quads: the masked one does not block them.
+  for (int i = 0; i < 16; ++i) rays[i].tmax = 2.5f;
+  bool occluded[16];
+  g.occluded16(rays, 16, occluded);
+  for (int i = 0; i < 16; ++i) {
+    EXPECT_FALSE(g.occluded(rays[i])) << i;
+    EXPECT_FALSE(occluded[i]) << i;
+  }
+  rays[3].tmax = 3.5f;  // past the back quad: blocked
+  g.occluded16(rays, 16, occluded);
+  EXPECT_TRUE(occluded[3]);
+  EXPECT_FALSE(occluded[2]);
 }
 
 }  // namespace
