@@ -17,10 +17,11 @@ profile() {
   local name=$1 scene=$2; shift 2
   perf record -q -o "$OUT/$name.data" "$LUMIS" render "$scene" -q -o "$OUT/$name.png" "$@" 2>/dev/null
   echo "== $name: by shared object"
-  perf report -i "$OUT/$name.data" --no-children --sort dso --stdio 2>/dev/null | grep '%' | head -6
+  # `|| true`: head closing the pipe early (SIGPIPE upstream) is not a failure.
+  perf report -i "$OUT/$name.data" --no-children --sort dso --stdio 2>/dev/null | grep '%' | head -6 || true
   echo "== $name: top symbols (Embree's are unnamed: Debian strips libembree3)"
   perf report -i "$OUT/$name.data" --no-children --sort dso,symbol --stdio 2>/dev/null | grep '%' | head -25 |
-    cut -c1-110
+    cut -c1-110 || true
 }
 profile cornell-sphere "$SRC/scenes/cornell-sphere.json" --width 256 --height 256 --spp 64
 profile large "$OUT/large.glb" --width 128 --height 128 --spp 64
