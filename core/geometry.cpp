@@ -2,6 +2,7 @@
 
 #include "core/embree_util.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -224,6 +225,41 @@ bool Geometry::intersect(const Ray& ray, Hit& hit) const {
   fill_hit(rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, hit);
   hit.front = dot(ray.d, hit.ng) < 0;
   return true;
+}
+
+void Geometry::intersect_each(const Ray* rays, int n, const bool* active, Hit* hits, bool* found) const {
+  struct EmbreeHit {
+    uint32_t geom_id, prim_id;
+    float u, v, t;
+  } raw[16];
+  n = std::min(n, 16);
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  for (int i = 0; i < n; ++i) {
+    found[i] = false;
+    if (!active[i] || !ray_is_valid(rays[i])) continue;
+    RTCRayHit rh = to_embree(rays[i]);
+    rtcIntersect1(impl_->scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+    found[i] = true;
+    raw[i] = {rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar};
+    const Impl::Slot& slot = impl_->slots[rh.hit.geomID];
+    if (slot.is_mesh) {  // the corner record (36 bytes: up to two cache lines) and the triangle's indices
+      const Vec3* corner = &impl_->corners[slot.index][3 * size_t(rh.hit.primID)];
+      __builtin_prefetch(corner);
+      __builtin_prefetch(reinterpret_cast<const char*>(corner) + 35);
+      const TriangleMesh& m = impl_->meshes[slot.index];
+      if (!m.normals.empty() || !m.uv0.empty()) __builtin_prefetch(&m.indices[3 * size_t(rh.hit.primID)]);
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!found[i]) continue;
+    Hit& hit = hits[i];
+    hit.t = raw[i].t;
+    hit.p = rays[i].o + rays[i].d * hit.t;
+    fill_hit(raw[i].geom_id, raw[i].prim_id, raw[i].u, raw[i].v, hit);
+    hit.front = dot(rays[i].d, hit.ng) < 0;
+  }
 }
 
 void Geometry::intersect16(const Ray* rays, int n, Hit* hits, bool* found) const {

@@ -88,57 +88,54 @@ class PathIntegrator final : public Integrator {
 
   void li(const Scene& scene, const PathBatch& batch, PathCounters& counters) const override {
     constexpr int kLanes = PathBatch::kMaxLanes;
-    struct Lane {
-      Color beta{1};
-      PathState prev;
-      Ray ray;
-      Hit hit;
-      bool alive = true;
-    };
-    Lane lanes[kLanes];
     const int n = std::min(batch.n, kLanes);
+    // Per lane: the current ray and its hit, throughput, what the previous vertex passes on, whether it goes on.
+    Ray rays[kLanes];
+    Hit hits[kLanes];
+    Color beta[kLanes];
+    PathState prev[kLanes];
+    bool alive[kLanes], found[kLanes];
     for (int k = 0; k < n; ++k) {
-      lanes[k].ray = batch.rays[k];
+      rays[k] = batch.rays[k];
+      beta[k] = Color(1);
+      alive[k] = true;
       batch.radiance[k] = Color(0);
     }
-    bool found[kLanes];
-    Ray rays[kLanes];
+    Ray shadow_rays[kLanes];
     ShadowQuery shadow[kLanes];
     bool occluded[kLanes];
     int owner[kLanes];  // lane of each shadow ray
     for (int bounce = 0;; ++bounce) {
-      // Closest hits of every live lane.
+      // Closest hits of every live lane (bounce rays one by one: 16-wide packets of them measured no faster).
       int live = 0;
-      for (int k = 0; k < n; ++k) live += lanes[k].alive;
+      for (int k = 0; k < n; ++k) live += alive[k];
       if (live == 0) break;
       counters.rays += live;
       if (bounce == 0 && batch.primary) {
         for (int k = 0; k < n; ++k) {
           found[k] = batch.primary[k] != nullptr;
-          if (found[k]) lanes[k].hit = *batch.primary[k];
+          if (found[k]) hits[k] = *batch.primary[k];
         }
-      } else {  // bounce rays one by one: 16-wide packets of them measured no faster (docs/performance.md)
-        for (int k = 0; k < n; ++k)
-          if (lanes[k].alive) found[k] = scene.geometry.intersect(lanes[k].ray, lanes[k].hit);
+      } else {
+        scene.geometry.intersect_each(rays, n, alive, hits, found);
       }
 
       // Shade each live lane; its next-event estimate waits in `shadow`.
       int n_shadow = 0;
       for (int k = 0; k < n; ++k) {
-        Lane& lane = lanes[k];
-        if (!lane.alive) continue;
+        if (!alive[k]) continue;
         bool has_shadow = false;
-        lane.alive = shade(scene, bounce, lane.ray, found[k], lane.hit, lane.beta, lane.prev, batch.radiance[k],
-                           batch.samplers[k], bounce == 0 && batch.aov ? &batch.aov[k] : nullptr, shadow[n_shadow],
-                           has_shadow, counters);
+        alive[k] = shade(scene, bounce, rays[k], found[k], hits[k], beta[k], prev[k], batch.radiance[k],
+                         batch.samplers[k], bounce == 0 && batch.aov ? &batch.aov[k] : nullptr, shadow[n_shadow],
+                         has_shadow, counters);
         if (has_shadow) owner[n_shadow++] = k;
       }
 
       // Shadow rays of this bounce.
       if (n_shadow == 0) continue;
       if (batch.shadow_packets && n_shadow > 1) {
-        for (int i = 0; i < n_shadow; ++i) rays[i] = shadow[i].ray;
-        scene.geometry.occluded16(rays, n_shadow, occluded);
+        for (int i = 0; i < n_shadow; ++i) shadow_rays[i] = shadow[i].ray;
+        scene.geometry.occluded16(shadow_rays, n_shadow, occluded);
       } else {
         for (int i = 0; i < n_shadow; ++i) occluded[i] = scene.geometry.occluded(shadow[i].ray);
       }

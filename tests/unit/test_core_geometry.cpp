@@ -1,6 +1,6 @@
-// Geometry's ray queries: the 16-ray packet queries (camera rays, shadow rays) against the single-ray ones, on a
-// scene with a triangle mesh and spheres (hits, misses, partial packets, an invalid ray), and alpha-masked
-// surfaces under both.
+// Geometry's ray queries: the 16-ray packet queries (camera rays, shadow rays) and the batched one-by-one query
+// (bounce rays) against the single-ray ones, on a scene with a triangle mesh and spheres (hits, misses, partial
+// packets, inactive lanes, an invalid ray), and alpha-masked surfaces under both.
 // Deterministic: no statistics.
 #include <gtest/gtest.h>
 
@@ -71,6 +71,62 @@ TEST(Geometry, PacketQueryMatchesSingleRays) {
   EXPECT_GT(misses, 10);
 }
 
+// Rays traced one by one with their hit records filled afterwards (intersect_each): the very same hits as
+// intersect(), bit for bit, including the error bound; inactive lanes keep their hit untouched and report no hit.
+TEST(Geometry, EachQueryMatchesSingleRaysBitForBit) {
+  Geometry g;
+  build_scene(g);
+  Pcg32 rng(5, 9);
+  int hits = 0, misses = 0;
+  for (int batch = 0; batch < 32; ++batch) {
+    const int n = batch % 4 == 3 ? 1 + batch % 16 : 16;
+    Ray rays[16];
+    bool active[16];
+    for (int i = 0; i < n; ++i) {
+      // Incoherent rays from scattered origins above the quad, in all directions (some miss, some hit the back).
+      const Vec3 o(rng.next_float() * 4 - 2, rng.next_float() * 4 - 2, rng.next_float() * 2 + 0.1f);
+      const Vec3 d(rng.next_float() * 2 - 1, rng.next_float() * 2 - 1, rng.next_float() * 2 - 1.2f);
+      rays[i] = {o, d, 1e-4f, INFINITY};
+      active[i] = (i + batch) % 5 != 0;
+    }
+    Hit each[16];
+    for (Hit& h : each) h.material = -7;  // marks an untouched record
+    bool found[16];
+    g.intersect_each(rays, n, active, each, found);
+    for (int i = 0; i < n; ++i) {
+      if (!active[i]) {
+        EXPECT_FALSE(found[i]) << i;
+        EXPECT_EQ(each[i].material, -7) << i;
+        continue;
+      }
+      Hit single;
+      const bool f = g.intersect(rays[i], single);
+      ASSERT_EQ(f, found[i]) << "batch " << batch << " lane " << i;
+      if (!f) {
+        ++misses;
+        continue;
+      }
+      ++hits;
+      EXPECT_EQ(single.t, each[i].t) << i;
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(single.p[c], each[i].p[c]) << i;
+        EXPECT_EQ(single.p_error[c], each[i].p_error[c]) << i;
+        EXPECT_EQ(single.ng[c], each[i].ng[c]) << i;
+        EXPECT_EQ(single.ns[c], each[i].ns[c]) << i;
+      }
+      EXPECT_EQ(single.uv[0].x, each[i].uv[0].x) << i;
+      EXPECT_EQ(single.uv[0].y, each[i].uv[0].y) << i;
+      EXPECT_EQ(single.geom_id, each[i].geom_id) << i;
+      EXPECT_EQ(single.prim_id, each[i].prim_id) << i;
+      EXPECT_EQ(single.front, each[i].front) << i;
+      EXPECT_EQ(single.material, each[i].material) << i;
+      EXPECT_EQ(single.light, each[i].light) << i;
+    }
+  }
+  EXPECT_GT(hits, 100);  // the test sees both outcomes
+  EXPECT_GT(misses, 20);
+}
+
 // Shadow rays of neighbouring paths in one packet: occluded16 answers as occluded() does, for rays from points on
 // the quad toward random points above it (some blocked by the spheres, some not, some ending just short of a
 // sphere), partial packets, and an invalid ray (occluded, as occluded() says).
@@ -95,7 +151,9 @@ TEST(Geometry, ShadowPacketMatchesSingleRays) {
       ASSERT_EQ(single, packed[i]) << "packet " << packet << " lane " << i;
       (single ? blocked : clear) += 1;
     }
-    if (packet == 6) EXPECT_TRUE(packed[4]);
+    if (packet == 6) {
+      EXPECT_TRUE(packed[4]);
+    }
   }
   EXPECT_GT(blocked, 50);  // the test sees both outcomes
   EXPECT_GT(clear, 200);
