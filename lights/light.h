@@ -10,6 +10,7 @@
 #include "core/geometry.h"
 #include "core/math.h"
 #include "core/texture.h"
+#include "core/warp.h"
 
 namespace lumis {
 
@@ -18,6 +19,25 @@ struct LightSampleContext {
   Vec3 p;
   Vec3 n;
 };
+
+/// A sphere light's parameters, for selection loops that evaluate many spheres without a virtual call each.
+struct SphereEmitter {
+  Vec3 center;
+  float radius = 0;
+  float luminance = 0;  ///< luminance of its radiance
+};
+
+/// Selection importance of a one-sided sphere emitter at ctx (lecture): cap solid angle x luminance; 0 from inside
+/// (nothing is emitted inward) and when the sphere lies entirely below the horizon (n.(c - p) < -r).
+inline float sphere_importance(const SphereEmitter& s, const LightSampleContext& ctx) {
+  const Vec3 to_c = s.center - ctx.p;
+  const float d2 = length_squared(to_c);
+  const float r2 = s.radius * s.radius;
+  if (d2 <= r2) return 0;
+  if (dot(ctx.n, to_c) < -s.radius) return 0;
+  const float solid_angle = 2 * kPi * one_minus_cos_from_sin2(std::min(r2 / d2, 1.0f));
+  return solid_angle * s.luminance;
+}
 
 struct LightSample {
   Color le;          ///< radiance arriving at the receiver along -wi (before visibility)
@@ -48,6 +68,8 @@ class Light {
   /// Called once with the scene bounds before rendering (environment: scene radius).
   virtual void preprocess(const Bounds3& /*scene_bounds*/) {}
   virtual bool is_environment() const { return false; }
+  /// Sphere lights: their parameters (importance() is then sphere_importance of them); others: nullopt.
+  virtual std::optional<SphereEmitter> sphere() const { return std::nullopt; }
   virtual std::string name() const = 0;
 };
 

@@ -2,6 +2,7 @@
 // light is entirely below the horizon; pick j with sum_{l<j} c_l <= C u < sum_{l<=j} c_l by a linear search, so
 // the cost is O(number of lights) per vertex and nothing is allocated.
 #include <array>
+#include <cmath>
 
 #include "lights/light_selection.h"
 
@@ -30,21 +31,51 @@ LightSelector::LightSelector(std::vector<const Light*> lights, LightSelection st
     for (size_t i = 0; i < lights_.size(); ++i) power[i] = std::max(lights_[i]->power(), 0.0f);
     power_ = Distribution1D(power);
   }
+  if (strategy_ == LightSelection::Importance && lights_.size() <= kMaxCached) {
+    for (size_t i = 0; i < lights_.size(); ++i) {
+      if (const std::optional<SphereEmitter> s = lights_[i]->sphere()) {
+        spheres_.x.push_back(s->center.x);
+        spheres_.y.push_back(s->center.y);
+        spheres_.z.push_back(s->center.z);
+        spheres_.radius.push_back(s->radius);
+        spheres_.luminance.push_back(s->luminance);
+        spheres_.index.push_back(static_cast<int>(i));
+      } else {
+        other_index_.push_back(static_cast<int>(i));
+      }
+    }
+  }
 }
 
 namespace {
 
 // Importance clamped to a finite, non-negative value (a NaN must neither be chosen nor poison the sum).
-float clean_importance(const Light* light, const LightSampleContext& ctx) {
-  const float c = light->importance(ctx);
-  return std::isfinite(c) && c > 0 ? c : 0.0f;
-}
-
-// Small scenes keep the per-vertex importances on the stack; larger ones recompute them in the search (the same
-// calls in the same order, so the values are identical).
-constexpr size_t kCachedImportances = 64;
+float clean(float c) { return std::isfinite(c) && c > 0 ? c : 0.0f; }
+float clean_importance(const Light* light, const LightSampleContext& ctx) { return clean(light->importance(ctx)); }
 
 }  // namespace
+
+void LightSelector::importances(const LightSampleContext& ctx, float* out) const {
+  // sphere_importance for every sphere, written without branches so that the compiler vectorises it (this file is
+  // built with -fno-math-errno -fno-trapping-math, see CMakeLists.txt); each operation is the one sphere_importance performs, in the
+  // same order, so the values are identical (LightSelection.SphereFastPathEqualsEachLightsImportance).
+  const SphereColumns& s = spheres_;
+  const size_t m = s.index.size();
+  float value[kMaxCached];
+  for (size_t i = 0; i < m; ++i) {
+    const float dx = s.x[i] - ctx.p.x, dy = s.y[i] - ctx.p.y, dz = s.z[i] - ctx.p.z;
+    const float d2 = dx * dx + dy * dy + dz * dz;
+    const float r = s.radius[i], r2 = r * r;
+    const float n_dot = ctx.n.x * dx + ctx.n.y * dy + ctx.n.z * dz;
+    const float sin2 = std::min(r2 / d2, 1.0f);
+    const float one_minus_cos = sin2 / (1.0f + std::sqrt(std::max(1.0f - sin2, 0.0f)));
+    const float v = 2 * kPi * one_minus_cos * s.luminance[i];
+    const bool hidden = (d2 <= r2) | (n_dot < -r);  // inside, or below the horizon (no short circuit: no branch)
+    value[i] = hidden ? 0.0f : v;
+  }
+  for (size_t i = 0; i < m; ++i) out[s.index[i]] = clean(value[i]);
+  for (const int j : other_index_) out[j] = clean_importance(lights_[j], ctx);
+}
 
 std::optional<LightChoice> LightSelector::sample(const LightSampleContext& ctx, float u) const {
   const size_t n = lights_.size();
@@ -66,14 +97,13 @@ std::optional<LightChoice> LightSelector::sample(const LightSampleContext& ctx, 
     const float c = clean_importance(lights_[0], ctx);
     return c > 0 ? std::optional<LightChoice>(LightChoice{0, 1.0f}) : std::nullopt;
   }
-  std::array<float, kCachedImportances> cache;
-  const bool cached = n <= kCachedImportances;
+  // Up to kMaxCached lights the importances stay on the stack; more are recomputed in the search (the same values:
+  // sphere_importance is what a sphere's importance() returns).
+  std::array<float, kMaxCached> cache;
+  const bool cached = n <= kMaxCached;
+  if (cached) importances(ctx, cache.data());
   float total = 0;
-  for (size_t j = 0; j < n; ++j) {
-    const float c = clean_importance(lights_[j], ctx);
-    if (cached) cache[j] = c;
-    total += c;
-  }
+  for (size_t j = 0; j < n; ++j) total += cached ? cache[j] : clean_importance(lights_[j], ctx);
   if (!(total > 0)) return std::nullopt;
   const float target = total * u;
   float running = 0;
@@ -100,6 +130,13 @@ float LightSelector::pmf(const LightSampleContext& ctx, int index) const {
     case LightSelection::Importance: break;
   }
   if (n == 1) return clean_importance(lights_[0], ctx) > 0 ? 1.0f : 0.0f;
+  if (n <= kMaxCached) {
+    std::array<float, kMaxCached> cache;
+    importances(ctx, cache.data());
+    float total = 0;
+    for (size_t j = 0; j < n; ++j) total += cache[j];
+    return total > 0 ? cache[index] / total : 0.0f;
+  }
   float total = 0, mine = 0;
   for (size_t j = 0; j < n; ++j) {
     const float c = clean_importance(lights_[j], ctx);

@@ -35,6 +35,16 @@ class LightSelector {
   std::vector<const Light*> lights_;
   LightSelection strategy_ = LightSelection::Uniform;
   Distribution1D power_;
+  // Importance strategy, up to kMaxCached lights: the sphere lights' parameters in columns, evaluated in one
+  // branch-free (vectorised) loop with no virtual call each, with sphere_importance's arithmetic; others by Light.
+  static constexpr size_t kMaxCached = 64;
+  struct SphereColumns {
+    std::vector<float> x, y, z, radius, luminance;
+    std::vector<int> index;  ///< the light's index in lights_
+  } spheres_;
+  std::vector<int> other_index_;
+  /// Every light's importance at ctx (finite, >= 0) into out[0..size()); size() <= kMaxCached.
+  void importances(const LightSampleContext& ctx, float* out) const;
 };
 
 }  // namespace lumis

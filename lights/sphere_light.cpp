@@ -61,14 +61,8 @@ class SphereLight final : public Light {
   }
 
   /// Cap solid angle x luminance; 0 below the horizon (n.(c - p) < -r) and from inside (nothing emitted inward).
-  float importance(const LightSampleContext& ctx) const override {
-    const Vec3 to_c = c_ - ctx.p;
-    const float d2 = length_squared(to_c);
-    if (d2 <= r_ * r_) return 0;
-    if (dot(ctx.n, to_c) < -r_) return 0;
-    const float solid_angle = 2 * kPi * cap_one_minus_cos(d2);
-    return solid_angle * luminance(radiance_);
-  }
+  float importance(const LightSampleContext& ctx) const override { return sphere_importance(params(), ctx); }
+  std::optional<SphereEmitter> sphere() const override { return params(); }
 
   /// pi x area x luminance (Lambertian emitter).
   float power() const override { return kPi * area() * luminance(radiance_); }
@@ -76,6 +70,7 @@ class SphereLight final : public Light {
 
  private:
   float area() const { return 4 * kPi * r_ * r_; }
+  SphereEmitter params() const { return {c_, r_, luminance(radiance_)}; }
   /// 1 - cos of the half-angle of the cap the sphere subtends from squared distance d2 > r^2.
   float cap_one_minus_cos(float d2) const { return one_minus_cos_from_sin2(std::min(r_ * r_ / d2, 1.0f)); }
 

@@ -1,7 +1,9 @@
 // Light selection: names, pmfs summing to 1, sample().pmf == pmf(), chosen indices following the pmf (chi-square),
-// zero probability below the horizon, nullopt when nothing can contribute, and the >64-light path.
+// zero probability below the horizon, nullopt when nothing can contribute, the >64-light path, and the sphere
+// lights' devirtualised importance equal to their own importance().
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -93,6 +95,34 @@ TEST(LightSelection, StrategiesWeighAsDocumented) {
   EXPECT_GT(importance.pmf(kCtx, 2), 0.0f);
   EXPECT_GT(importance.pmf({kCtx.p, {0, 0, 0}}, 1), 0.0f);
   EXPECT_GT(importance.pmf(kCtx, 4), 0.0f) << "the environment is never entirely below a horizon";
+}
+
+// The importance strategy evaluates sphere lights through their parameters (no virtual call each): its pmf must be
+// exactly what every light's own importance() gives, bit for bit, for spheres mixed with other kinds, at receivers
+// inside, outside and around the spheres, with and without a horizon.
+TEST(LightSelection, SphereFastPathEqualsEachLightsImportance) {
+  const Scene s = make_scene();
+  EXPECT_TRUE(s.lights[0]->sphere().has_value());
+  EXPECT_FALSE(s.lights[3]->sphere().has_value());  // the quad
+  EXPECT_FALSE(s.lights[4]->sphere().has_value());  // the environment
+  // In the scene's order (spheres first) and reversed (spheres last), so a sphere's slot is not its rank.
+  std::vector<const Light*> lights = s.lights;
+  Pcg32 rng(41, 7);
+  for (int trial = 0; trial < 2000; ++trial) {
+    if (trial == 1000) std::reverse(lights.begin(), lights.end());
+    const LightSelector sel(lights, LightSelection::Importance);
+    const Vec3 p{8 * rng.next_float() - 4, 8 * rng.next_float() - 4, 4 * rng.next_float() - 2};
+    const Vec3 n = trial % 7 == 0 ? Vec3(0) : normalize(Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f,
+                                                             rng.next_float() - 0.5f));
+    const LightSampleContext ctx{p, n};
+    float c[5], total = 0;
+    for (int j = 0; j < 5; ++j) {
+      const float v = lights[j]->importance(ctx);
+      c[j] = std::isfinite(v) && v > 0 ? v : 0.0f;
+      total += c[j];
+    }
+    for (int j = 0; j < 5; ++j) ASSERT_EQ(sel.pmf(ctx, j), total > 0 ? c[j] / total : 0.0f) << trial << " " << j;
+  }
 }
 
 TEST(LightSelection, NothingCanContribute) {
