@@ -27,16 +27,19 @@ struct SphereEmitter {
   float luminance = 0;  ///< luminance of its radiance
 };
 
+/// 1 - cos of the half-angle of the cap a sphere of squared radius r2 subtends from squared distance d2 > r2.
+inline float sphere_cap_one_minus_cos(float r2, float d2) { return one_minus_cos_from_sin2(std::min(r2 / d2, 1.0f)); }
+
 /// Selection importance of a one-sided sphere emitter at ctx (lecture): cap solid angle x luminance; 0 from inside
-/// (nothing is emitted inward) and when the sphere lies entirely below the horizon (n.(c - p) < -r).
+/// (nothing is emitted inward) and when the sphere lies entirely below the horizon (n.(c - p) < -r). Written without
+/// branches, so that the selector's loop over many spheres vectorises (lights/light_selection.cpp).
 inline float sphere_importance(const SphereEmitter& s, const LightSampleContext& ctx) {
   const Vec3 to_c = s.center - ctx.p;
   const float d2 = length_squared(to_c);
   const float r2 = s.radius * s.radius;
-  if (d2 <= r2) return 0;
-  if (dot(ctx.n, to_c) < -s.radius) return 0;
-  const float solid_angle = 2 * kPi * one_minus_cos_from_sin2(std::min(r2 / d2, 1.0f));
-  return solid_angle * s.luminance;
+  const bool hidden = (d2 <= r2) | (dot(ctx.n, to_c) < -s.radius);  // no short circuit: no branch
+  const float importance = 2 * kPi * sphere_cap_one_minus_cos(r2, d2) * s.luminance;
+  return hidden ? 0.0f : importance;
 }
 
 struct LightSample {

@@ -72,7 +72,7 @@ class SphereLight final : public Light {
   float area() const { return 4 * kPi * r_ * r_; }
   SphereEmitter params() const { return {c_, r_, luminance(radiance_)}; }
   /// 1 - cos of the half-angle of the cap the sphere subtends from squared distance d2 > r^2.
-  float cap_one_minus_cos(float d2) const { return one_minus_cos_from_sin2(std::min(r_ * r_ / d2, 1.0f)); }
+  float cap_one_minus_cos(float d2) const { return sphere_cap_one_minus_cos(r_ * r_, d2); }
 
   // Uniform point on the sphere; solid-angle density dist^2 / (|cos| area) at the receiver.
   std::optional<LightSample> sample_area(const LightSampleContext& ctx, Vec2 u) const {
