@@ -18,7 +18,7 @@ namespace lumis {
 namespace {
 
 constexpr int kTile = 16;  // a multiple of the packet block
-constexpr int kLanes = 16, kBlock = 4;  // camera packets: 4x4 pixels, one rtcIntersect16
+constexpr int kLanes = PathBatch::kMaxLanes, kBlock = 4;  // a PathBatch: 4x4 pixels, one rtcIntersect16
 static_assert(kBlock * kBlock == kLanes && kTile % kBlock == 0);
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
