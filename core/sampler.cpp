@@ -141,15 +141,23 @@ Sampler::Sampler(SamplerType type, uint32_t spp, uint32_t seed) : type_(type), s
   inv_spp_ = 1.0f / static_cast<float>(spp_);
   inv_strata_x_ = 1.0f / static_cast<float>(strata_x_);
   inv_strata_y_ = 1.0f / static_cast<float>(strata_y_);
+  // m = floor(2^32 / sx) + 1 exceeds 2^32 / sx by e <= sx, so (k m) >> 32 = floor(k / sx + k e / (sx 2^32)) is exact
+  // while k e < 2^32, which k < spp <= 2^16 and sx <= spp guarantee.
+  if (spp_ <= (1u << 16)) div_strata_x_ = (uint64_t{1} << 32) / strata_x_ + 1;
 }
 
 void Sampler::start(uint32_t px, uint32_t py, uint32_t index) {
+  // A renderer starts one pixel's samples in a row: its hashes are kept while the pixel (and block) stays the same.
+  const bool same_pixel = has_pixel_ && px == px_ && py == py_;
+  if (!same_pixel) pixel_hash_ = hash_combine(hash_combine(px, py), 0x51ed0000ULL + seed_);
   px_ = px, py_ = py, index_ = index, dim_ = 0;
-  pixel_hash_ = hash_combine(hash_combine(px, py), 0x51ed0000ULL + seed_);
+  has_pixel_ = true;
   rng_.seed(hash_combine(pixel_hash_, index), pixel_hash_);
   // Past spp, each further block of spp samples is a fresh stratified set (its own permutation).
-  stratum_index_ = index % spp_;
-  block_hash_ = hash_combine(pixel_hash_, index / spp_);
+  const uint32_t block = index / spp_;
+  stratum_index_ = index - block * spp_;
+  if (!same_pixel || block != block_) block_hash_ = hash_combine(pixel_hash_, block);
+  block_ = block;
 }
 
 uint32_t Sampler::stratum(uint32_t d) const {
@@ -166,6 +174,14 @@ float Sampler::get1d() {
   return to_unit_float(owen_scramble(reverse_bits(index), seed32(mix64(key + 1))));
 }
 
+Vec2 Sampler::stratified2d(uint32_t k) {
+  const uint32_t row = div_strata_x_ ? static_cast<uint32_t>((k * div_strata_x_) >> 32) : k / strata_x_;
+  const uint32_t column = k - row * strata_x_;
+  const float jx = rng_.next_float(), jy = rng_.next_float();
+  return {std::min((static_cast<float>(column) + jx) * inv_strata_x_, kOneMinusEpsilon),
+          std::min((static_cast<float>(row) + jy) * inv_strata_y_, kOneMinusEpsilon)};
+}
+
 Vec2 Sampler::get2d() {
   const uint32_t d = dim_;
   dim_ += 2;
@@ -173,18 +189,42 @@ Vec2 Sampler::get2d() {
     const float a = rng_.next_float();
     return {a, rng_.next_float()};
   }
-  if (type_ == SamplerType::Stratified) {
-    const uint32_t k = stratum(d);
-    const float jx = rng_.next_float(), jy = rng_.next_float();
-    return {std::min((static_cast<float>(k % strata_x_) + jx) * inv_strata_x_, kOneMinusEpsilon),
-            std::min((static_cast<float>(k / strata_x_) + jy) * inv_strata_y_, kOneMinusEpsilon)};
-  }
+  if (type_ == SamplerType::Stratified) return stratified2d(stratum(d));
   const uint64_t key = hash_combine_mixed(pixel_hash_, mixed_dim(d));
   // Shuffling the index by an MSB-first nested scramble maps each aligned block of 2^k indices onto another aligned
   // block, so the first 2^k samples of a pixel are still a (0,k,2)-net.
   const uint32_t index = owen_scramble(index_, seed32(mix64(key)));
   return {to_unit_float(owen_scramble(reverse_bits(index), seed32(mix64(key + 1)))),
           to_unit_float(owen_scramble(sobol_dim1(index), seed32(mix64(key + 2))))};
+}
+
+VertexDims Sampler::get_vertex() {
+  if (type_ != SamplerType::Stratified) {
+    VertexDims v;
+    v.choice = get1d();
+    v.light = get2d();
+    v.lobe = get1d();
+    v.dir = get2d();
+    v.rr = get1d();
+    return v;
+  }
+  // Dimensions d (1D), d+1 (2D), d+3 (1D), d+4 (2D), d+6 (1D): five independent hash chains, then the jitters in
+  // the order the five separate calls draw them.
+  const uint32_t d = dim_;
+  dim_ += 7;
+  constexpr uint32_t kFirst[5] = {0, 1, 3, 4, 6};
+  uint32_t k[5];
+  for (int i = 0; i < 5; ++i) k[i] = stratum(d + kFirst[i]);
+  const auto one = [&](uint32_t stratum_k) {
+    return std::min((static_cast<float>(stratum_k) + rng_.next_float()) * inv_spp_, kOneMinusEpsilon);
+  };
+  VertexDims v;
+  v.choice = one(k[0]);
+  v.light = stratified2d(k[1]);
+  v.lobe = one(k[2]);
+  v.dir = stratified2d(k[3]);
+  v.rr = one(k[4]);
+  return v;
 }
 
 }  // namespace lumis

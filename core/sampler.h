@@ -17,6 +17,15 @@ enum class SamplerType { Independent, Stratified, Sobol };
 std::optional<SamplerType> parse_sampler_type(std::string_view name);
 const char* sampler_type_name(SamplerType type);
 
+/// The seven dimensions one path vertex consumes, in the path loop's fixed order (integrators/path.h).
+struct VertexDims {
+  float choice;  ///< light / strategy choice (1D)
+  Vec2 light;    ///< point on the light (2D)
+  float lobe;    ///< BSDF lobe choice (1D)
+  Vec2 dir;      ///< BSDF direction (2D)
+  float rr;      ///< Russian roulette (1D)
+};
+
 class Sampler {
  public:
   /// spp is the number of samples each pixel will take (stratified uses it to size its strata).
@@ -29,6 +38,9 @@ class Sampler {
   float get1d();
   /// Next two dimensions, uniform in [0,1)^2 (stratified/Sobol jointly in 2D).
   Vec2 get2d();
+  /// get1d, get2d, get1d, get2d, get1d: the same values as those five calls in that order (stratified: the five
+  /// strata are computed side by side, so their hashes overlap instead of waiting on each other).
+  VertexDims get_vertex();
 
   SamplerType type() const { return type_; }
   uint32_t spp() const { return spp_; }
@@ -43,11 +55,17 @@ class Sampler {
   uint32_t mask_ = 0;
   int shift_ = 1;
   float inv_spp_ = 1, inv_strata_x_ = 1, inv_strata_y_ = 1;
+  uint64_t div_strata_x_ = 0;  // k / strata_x_ == (k * div_strata_x_) >> 32 for every k < spp_; 0: divide
+
   uint32_t stratum_index_ = 0;
   uint64_t block_hash_ = 0;  // hash of (pixel, seed, index / spp): keys the permutations of this block of spp
+  uint32_t block_ = 0;       // index / spp of the current sample
+  bool has_pixel_ = false;   // pixel_hash_ and block_hash_ belong to (px_, py_) and block_
   Pcg32 rng_;
 
   uint32_t stratum(uint32_t d) const;  ///< the stratum of dimension d for this sample
+  Vec2 stratified2d(uint32_t k);       ///< point in 2D stratum k of the strata_x_ x strata_y_ grid, jittered
+
 };
 
 }  // namespace lumis

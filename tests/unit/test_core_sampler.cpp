@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <set>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -60,6 +61,40 @@ TEST(Sampler, ValuesInUnitIntervalAndDeterministic) {
     a.start(2, 1, 0);
     EXPECT_NE(a.get2d().x, x.x);
   }
+}
+
+// get_vertex() is the five calls of one path vertex in one: the same numbers bit for bit, at every vertex of a
+// path, for every type and for spp whose grid is square, oblong, prime, and too large for the division shortcut.
+TEST(Sampler, VertexDimsEqualTheFiveSeparateCalls) {
+  for (SamplerType t : kTypes)
+    for (uint32_t spp : {1u, 4u, 6u, 7u, 16u, 48u, 1u << 17}) {
+      Sampler a(t, spp, 3), b(t, spp, 3);
+      for (uint32_t i : {0u, 1u, spp - 1, spp, 3 * spp + 2}) {
+        a.start(9, 4, i);
+        b.start(9, 4, i);
+        for (int vertex = 0; vertex < 4; ++vertex) {
+          const float lead = a.get1d();  // camera dimensions before the first vertex shift the dimension index
+          ASSERT_EQ(lead, b.get1d());
+          const VertexDims v = a.get_vertex();
+          const float choice = b.get1d();
+          const Vec2 light = b.get2d();
+          const float lobe = b.get1d();
+          const Vec2 dir = b.get2d();
+          const float rr = b.get1d();
+          const auto where = [&] {
+            return std::string(sampler_type_name(t)) + " spp " + std::to_string(spp) + " index " +
+                   std::to_string(i) + " vertex " + std::to_string(vertex);
+          };
+          ASSERT_EQ(v.choice, choice) << where();
+          ASSERT_EQ(v.light.x, light.x) << where();
+          ASSERT_EQ(v.light.y, light.y) << where();
+          ASSERT_EQ(v.lobe, lobe) << where();
+          ASSERT_EQ(v.dir.x, dir.x) << where();
+          ASSERT_EQ(v.dir.y, dir.y) << where();
+          ASSERT_EQ(v.rr, rr) << where();
+        }
+      }
+    }
 }
 
 TEST(Sampler, ExtremeValuesStayBelowOne) {
