@@ -13,8 +13,8 @@ float mis_weight(float pdf_a, float pdf_b, MisHeuristic heuristic) {
   return std::isfinite(w) ? w : 0.0f;
 }
 
-bool make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_dir, std::optional<Vertex>& out) {
-  if (hit.material < 0) return false;
+std::optional<Vertex> make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_dir) {
+  if (hit.material < 0) return std::nullopt;
   ShadingPoint sp = scene.materials[hit.material]->shade(hit);
   Frame frame = sp.frame;
   Vec3 ng = hit.ng;
@@ -29,10 +29,9 @@ bool make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_dir, std::optional
   if (!(wo.z > 1e-6f)) {
     frame = Frame::from_normal(ng);
     wo = frame.to_local(wo_world);
-    if (!(wo.z > 0)) return false;
+    if (!(wo.z > 0)) return std::nullopt;
   }
-  out.emplace(scene, hit, frame, ng, sp.bsdf, wo, LightSampleContext{hit.p, ng});  // built in place
-  return true;
+  return Vertex(scene, hit, frame, ng, sp.bsdf, wo, LightSampleContext{hit.p, ng});
 }
 
 std::optional<ShadowQuery> sample_direct(const Vertex& v, float u_choice, Vec2 u_light, bool mis_weighted,

@@ -22,7 +22,7 @@ namespace lumis {
 
 /// A scattering vertex, shaded and oriented: frame.n and ng face the side the path arrived from.
 struct Vertex {
-  /// Members in order (a constructor, not aggregate init: clang 14 has no parenthesised aggregate init for emplace).
+  /// Members in order.
   Vertex(const Scene& scene_, const Hit& hit_, const Frame& frame_, Vec3 ng_, const Bsdf& bsdf_, Vec3 wo_,
          LightSampleContext ctx_)
       : scene(scene_), hit(hit_), frame(frame_), ng(ng_), bsdf(bsdf_), wo(wo_), ctx(ctx_) {}
@@ -75,8 +75,8 @@ float light_pdf_for_hit(const Scene& scene, const LightSampleContext& ctx, int l
 /// BSDF-sampled continuation shared by bsdf, light and nee_mis.
 std::optional<Scatter> scatter_bsdf(const Vertex& v, float u_lobe, Vec2 u);
 
-/// Orient and shade a hit; false when it cannot scatter (pure emitter, or degenerate).
-bool make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_dir, std::optional<Vertex>& out);
+/// Orient and shade a hit; nullopt when it cannot scatter (pure emitter, or degenerate).
+std::optional<Vertex> make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_dir);
 
 template <class Variant>
 class PathIntegrator final : public Integrator {
@@ -163,8 +163,9 @@ class PathIntegrator final : public Integrator {
       const Color le = scene.lights[hit.light]->le(hit, -ray.d);
       if (!is_black(le)) radiance += beta * le * variant_.emission_weight(prev, scene, hit.light, &hit, ray.d);
     }
-    std::optional<Vertex> v;
-    const bool can_scatter = make_vertex(scene, hit, ray.d, v);
+    // Returned, not passed in: a declared std::optional<Vertex> was zero-filled (152 bytes) at every vertex.
+    const std::optional<Vertex> v = make_vertex(scene, hit, ray.d);
+    const bool can_scatter = v.has_value();
     if (aov) {
       aov->albedo = hit.material >= 0 ? scene.materials[hit.material]->albedo(hit) : Color(0);
       aov->normal = can_scatter ? v->frame.n : hit.ng;
@@ -173,11 +174,9 @@ class PathIntegrator final : public Integrator {
     if (bounce >= max_depth_ || !can_scatter) return false;
 
     // Dimensions: light choice, light position, strategy/lobe choice, direction, roulette (fixed order).
-    const float u_choice = sampler.get1d();
-    const Vec2 u_light = sampler.get2d();
-    const float u_lobe = sampler.get1d();
-    const Vec2 u_dir = sampler.get2d();
-    const float u_rr = sampler.get1d();
+    const VertexDims u = sampler.get_vertex();
+    const float u_choice = u.choice, u_lobe = u.lobe, u_rr = u.rr;
+    const Vec2 u_light = u.light, u_dir = u.dir;
 
     if (std::optional<ShadowQuery> q = variant_.direct(*v, u_choice, u_light, counters)) {
       shadow = {q->ray, beta * q->value};
