@@ -28,6 +28,8 @@ class Film {
 
   int width() const { return width_; }
   int height() const { return height_; }
+  /// Whether any AOV is kept (when not, renderers need not compute AovSamples).
+  bool has_aovs() const { return options_.albedo || options_.normal || options_.depth; }
   /// Add one radiance sample to pixel (x, y). Non-finite samples are dropped and counted.
   void add(int x, int y, Color radiance, const AovSample* aov = nullptr);
   /// Samples accumulated in pixel (x, y).

@@ -73,7 +73,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
         batch.rays = rays;
         batch.primary = packets ? primary : nullptr;
         batch.samplers = samplers;
-        batch.aov = aov;
+        batch.aov = film.has_aovs() ? aov : nullptr;  // first-hit albedo costs a material lookup per sample
         batch.radiance = radiance;
         batch.shadow_packets = options.shadow_packets;
         for (int tile = r.begin(); tile < r.end(); ++tile) {
@@ -95,7 +95,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
                   for (int k = 0; k < n; ++k) primary[k] = found[k] ? &hits[k] : nullptr;
                 }
                 integrator.li(scene, batch, local);
-                for (int k = 0; k < n; ++k) film.add(bx + k % w, by + k / w, radiance[k], &aov[k]);
+                for (int k = 0; k < n; ++k) film.add(bx + k % w, by + k / w, radiance[k], batch.aov ? &aov[k] : nullptr);
               }
             }
         }
