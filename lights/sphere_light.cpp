@@ -11,7 +11,8 @@ namespace {
 
 class SphereLight final : public Light {
  public:
-  SphereLight(Vec3 center, float radius, Color radiance) : c_(center), r_(radius), radiance_(radiance) {}
+  SphereLight(Vec3 center, float radius, Color radiance)
+      : c_(center), r_(radius), inv_r_(radius > 0 ? 1 / radius : 0.0f), radiance_(radiance) {}
 
   /// Solid angle at ctx.p: uniform in the subtended cap (outside), area sampling converted (inside).
   std::optional<LightSample> sample(const LightSampleContext& ctx, Vec2 u) const override {
@@ -35,7 +36,7 @@ class SphereLight final : public Light {
     s.wi = wi;
     s.dist = t;
     s.p_light = ctx.p + wi * t;
-    s.n_light = normalize(s.p_light - c_);
+    s.n_light = (s.p_light - c_) * inv_r_;  // p_light is on the sphere: unit up to rounding, no square root
     s.pdf = 1 / (2 * kPi * one_minus_cos_max);
     s.le = dot(s.n_light, -wi) > 0 ? radiance_ : Color{};
     return s;
@@ -96,7 +97,7 @@ class SphereLight final : public Light {
   }
 
   Vec3 c_;
-  float r_;
+  float r_, inv_r_;
   Color radiance_;
 };
 
