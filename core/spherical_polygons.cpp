@@ -46,10 +46,16 @@ double unit_triangle_solid_angle(D3 a, D3 b, D3 c) {
   return 2 * std::atan2(num, den);
 }
 
-// Interior angle of the spherical triangle at unit vertex a, between the great arcs toward b and toward c.
-double vertex_angle(D3 a, D3 b, D3 c) {
-  const D3 nb = dnormalize(dcross(a, b)), nc = dnormalize(dcross(a, c));
-  return std::acos(dclamp(ddot(nb, nc), -1, 1));
+// Cosine and sine of the interior angle of the spherical triangle at unit vertex a, between the great arcs toward
+// b and toward c (the angle between the normals of the two arcs' planes; in [0, pi], so the sine is >= 0).
+struct CosSin {
+  double cos, sin;
+};
+CosSin vertex_angle(D3 a, D3 b, D3 c) {
+  const D3 nb = dcross(a, b), nc = dcross(a, c);
+  const double inv = 1 / std::sqrt(ddot(nb, nb) * ddot(nc, nc));
+  if (!std::isfinite(inv)) return {1, 0};
+  return {dclamp(ddot(nb, nc) * inv, -1, 1), dclamp(dlen(dcross(nb, nc)) * inv, 0, 1)};
 }
 
 struct UnitTriangle {
@@ -129,14 +135,18 @@ std::optional<SphericalSample> sample_spherical_triangle(Vec3 p, Vec3 a, Vec3 b,
   const UnitTriangle t = make_unit_triangle(p, a, b, c);
   if (!t.ok) return std::nullopt;
   const D3 A = t.a, B = t.b, C = t.c;
-  const double alpha = vertex_angle(A, B, C);
+  // alpha's cosine and sine from the arcs' normals, and sin/cos(area_sub - alpha) by the angle-difference
+  // identities: one sincos instead of an acos and two (the same values up to rounding).
+  const CosSin alpha = vertex_angle(A, B, C);
   const double cos_c = ddot(A, B);  // cosine of the arc opposite C
   // Arvo: choose the sub-triangle (A, B, C') of area u.x * area; C' lies on arc AC at cos(arc AC') = q.
   const double area_sub = u.x * t.area;
-  const double s = std::sin(area_sub - alpha), cs = std::cos(area_sub - alpha);
-  const double uu = cs - std::cos(alpha);
-  const double vv = s + std::sin(alpha) * cos_c;
-  double q = ((vv * cs - uu * s) * std::cos(alpha) - vv) / ((vv * s + uu * cs) * std::sin(alpha));
+  const double sin_sub = std::sin(area_sub), cos_sub = std::cos(area_sub);
+  const double s = sin_sub * alpha.cos - cos_sub * alpha.sin;   // sin(area_sub - alpha)
+  const double cs = cos_sub * alpha.cos + sin_sub * alpha.sin;  // cos(area_sub - alpha)
+  const double uu = cs - alpha.cos;
+  const double vv = s + alpha.sin * cos_c;
+  double q = ((vv * cs - uu * s) * alpha.cos - vv) / ((vv * s + uu * cs) * alpha.sin);
   if (!std::isfinite(q)) q = 1;  // only at area_sub -> 0, where C' = A
   q = dclamp(q, -1, 1);
   const D3 c_perp = dnormalize(C - A * ddot(C, A));
@@ -146,6 +156,12 @@ std::optional<SphericalSample> sample_spherical_triangle(Vec3 p, Vec3 a, Vec3 b,
   const D3 b_perp = dnormalize(c_sub - B * ddot(c_sub, B));
   const D3 w = dnormalize(B * z + b_perp * std::sqrt(std::max(0.0, 1 - z * z)));
   return SphericalSample{to_f(w), static_cast<float>(1 / t.area)};
+}
+
+std::optional<float> spherical_triangle_pdf(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
+  const UnitTriangle t = make_unit_triangle(p, a, b, c);
+  if (!t.ok) return std::nullopt;
+  return static_cast<float>(1 / t.area);
 }
 
 Vec2 invert_spherical_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, Vec3 w) {
@@ -163,6 +179,12 @@ Vec2 invert_spherical_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, Vec3 w) {
 
 float rectangle_solid_angle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey) {
   return static_cast<float>(make_spherical_rect(p, origin, ex, ey).s);
+}
+
+std::optional<float> spherical_rectangle_pdf(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey) {
+  const SphericalRect r = make_spherical_rect(p, origin, ex, ey);
+  if (!(r.s >= kMinSolidAngle && r.s <= kMaxSolidAngle)) return std::nullopt;
+  return static_cast<float>(1 / r.s);
 }
 
 std::optional<SphericalSample> sample_spherical_rectangle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey, Vec2 u) {

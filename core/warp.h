@@ -71,6 +71,9 @@ struct SphericalSample {
 /// Arvo 1995: uniform direction inside the spherical triangle subtended by (a, b, c) from p. Fails (nullopt)
 /// when the solid angle is too small or too large to sample stably; callers fall back to area sampling.
 std::optional<SphericalSample> sample_spherical_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, Vec2 u);
+/// The density sample_spherical_triangle reports from p (solid angle), nullopt exactly when it fails; without
+/// drawing a sample.
+std::optional<float> spherical_triangle_pdf(Vec3 p, Vec3 a, Vec3 b, Vec3 c);
 /// Inverse of sample_spherical_triangle for a direction w inside the triangle.
 Vec2 invert_spherical_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, Vec3 w);
 
@@ -80,6 +83,8 @@ float rectangle_solid_angle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey);
 /// Urena et al. 2013: uniform direction in the solid angle of rectangle (origin, ex, ey) seen from p.
 /// Fails (nullopt) when the solid angle is too small to sample stably.
 std::optional<SphericalSample> sample_spherical_rectangle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey, Vec2 u);
+/// The density sample_spherical_rectangle reports from p (solid angle), nullopt exactly when it fails.
+std::optional<float> spherical_rectangle_pdf(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey);
 
 // ---- GGX (Trowbridge-Reitz) microfacet distribution, local frame, anisotropic roughness (ax, ay) ----
 

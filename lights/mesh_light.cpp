@@ -95,8 +95,7 @@ class MeshLight final : public Light {
     if (t >= area_.size() || !emits_toward(t, ctx.p)) return 0;
     const float pmf = triangles_.pmf(t);
     if (method_ == TriangleSampling::SphericalTriangle) {
-      if (const auto probe = sample_spherical_triangle(ctx.p, vertex(t, 0), vertex(t, 1), vertex(t, 2), {0.5f, 0.5f}))
-        return probe->pdf * pmf;
+      if (const auto pdf = spherical_triangle_pdf(ctx.p, vertex(t, 0), vertex(t, 1), vertex(t, 2))) return *pdf * pmf;
     }
     const float cos_l = std::abs(dot(normals_[t], wi));
     if (!(cos_l > 0)) return 0;

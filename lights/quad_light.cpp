@@ -56,7 +56,7 @@ class QuadLight final : public Light {
   /// Solid angle at ctx.p, as sample() would produce wi; only on_light.p is used (never prim_id).
   float pdf(const LightSampleContext& ctx, Vec3 wi, const Hit& on_light) const override {
     if (!faces(ctx.p)) return 0;
-    if (const auto probe = spherical_probe(ctx.p)) return probe->pdf;
+    if (const auto pdf = spherical_pdf(ctx.p)) return *pdf;
     const float cos_l = -dot(n_, wi);
     if (!(cos_l > 0)) return 0;
     return length_squared(on_light.p - ctx.p) / (cos_l * area_);
@@ -83,11 +83,11 @@ class QuadLight final : public Light {
 
  private:
   bool faces(Vec3 p) const { return area_ > 0 && dot(p - o_, n_) > 0; }
-  // A spherical-rectangle sample from p with an arbitrary u: present exactly when sample() takes that branch, and
-  // its pdf (1 / solid angle) is the very value sample() reports.
-  std::optional<SphericalSample> spherical_probe(Vec3 p) const {
+  // The spherical-rectangle density from p: present exactly when sample() takes that branch, and the very value
+  // (1 / solid angle) sample() reports.
+  std::optional<float> spherical_pdf(Vec3 p) const {
     if (method_ != QuadSampling::SphericalRectangle || !is_rectangle_) return std::nullopt;
-    return sample_spherical_rectangle(p, o_, eu_, ev_, Vec2{0.5f, 0.5f});
+    return spherical_rectangle_pdf(p, o_, eu_, ev_);
   }
 
   Vec3 o_, eu_, ev_, n_;

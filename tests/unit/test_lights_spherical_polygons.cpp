@@ -111,6 +111,41 @@ TEST(SphericalPolygons, FailureDependsOnGeometryOnly) {
   }
 }
 
+// The pdf-only functions the lights' pdf() use: present exactly when sampling succeeds, and the very density the
+// sample reports, over receivers all around (including ones that fail: in the plane, too far, degenerate).
+TEST(SphericalPolygons, PdfWithoutSamplingEqualsTheSamplesPdf) {
+  Pcg32 rng(17, 5);
+  const Vec3 a{1, -0.5f, 0.2f}, b{1.2f, 0.8f, -0.1f}, c{0.8f, 0.1f, 1}, o{1, -1, -1}, ex{0, 2, 0}, ey{0, 0, 2};
+  int present_tri = 0, absent_tri = 0, present_rect = 0, absent_rect = 0;
+  for (int i = 0; i < 4000; ++i) {
+    // Receivers from 1e-4 to 1e4 units away, some exactly in the polygons' planes.
+    const float r = std::pow(10.0f, -4 + 8 * rng.next_float());
+    Vec3 p = sample_uniform_sphere({rng.next_float(), rng.next_float()}) * r + Vec3{1, 0, 0.3f};
+    if (i % 10 == 0) p.x = 1;  // the rectangle's plane
+    const Vec2 u{rng.next_float(), rng.next_float()};
+    const auto st = sample_spherical_triangle(p, a, b, c, u);
+    const auto pt = spherical_triangle_pdf(p, a, b, c);
+    ASSERT_EQ(st.has_value(), pt.has_value()) << "receiver " << p.x << " " << p.y << " " << p.z;
+    if (st) {
+      ASSERT_EQ(st->pdf, *pt);
+    }
+    (pt ? present_tri : absent_tri)++;
+    const auto sr = sample_spherical_rectangle(p, o, ex, ey, u);
+    const auto pr = spherical_rectangle_pdf(p, o, ex, ey);
+    ASSERT_EQ(sr.has_value(), pr.has_value()) << "receiver " << p.x << " " << p.y << " " << p.z;
+    if (sr) {
+      ASSERT_EQ(sr->pdf, *pr);
+    }
+    (pr ? present_rect : absent_rect)++;
+  }
+  // Both outcomes occur, so the test compares something either way.
+  EXPECT_GT(present_tri, 100);
+  EXPECT_GT(absent_tri, 100);
+  EXPECT_GT(present_rect, 100);
+  EXPECT_GT(absent_rect, 100);
+  EXPECT_FALSE(spherical_triangle_pdf({0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}));
+}
+
 TEST(SphericalPolygons, RectangleWarpChiSquare) {
   struct Rect {
     Vec3 p, o, ex, ey;
