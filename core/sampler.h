@@ -56,7 +56,6 @@ class Sampler {
   int shift_ = 1;
   float inv_spp_ = 1, inv_strata_x_ = 1, inv_strata_y_ = 1;
   uint64_t div_strata_x_ = 0;  // k / strata_x_ == (k * div_strata_x_) >> 32 for every k < spp_; 0: divide
-
   uint32_t stratum_index_ = 0;
   uint64_t block_hash_ = 0;  // hash of (pixel, seed, index / spp): keys the permutations of this block of spp
   uint32_t block_ = 0;       // index / spp of the current sample
@@ -65,7 +64,6 @@ class Sampler {
 
   uint32_t stratum(uint32_t d) const;  ///< the stratum of dimension d for this sample
   Vec2 stratified2d(uint32_t k);       ///< point in 2D stratum k of the strata_x_ x strata_y_ grid, jittered
-
 };
 
 }  // namespace lumis
