@@ -95,7 +95,8 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
                   for (int k = 0; k < n; ++k) primary[k] = found[k] ? &hits[k] : nullptr;
                 }
                 integrator.li(scene, batch, local);
-                for (int k = 0; k < n; ++k) film.add(bx + k % w, by + k / w, radiance[k], batch.aov ? &aov[k] : nullptr);
+                for (int k = 0; k < n; ++k)
+                  film.add(bx + k % w, by + k / w, radiance[k], batch.aov ? &aov[k] : nullptr);
               }
             }
         }
