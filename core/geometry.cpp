@@ -343,36 +343,4 @@ int Geometry::all_light_hits(const Ray& ray, LightHitRecord* out, int max_hits) 
   return std::min(ctx.count, max_hits);
 }
 
-namespace {
-// The next float toward +infinity / -infinity (std::nextafter without the library call); infinities stay.
-float next_float_up(float v) {
-  if (std::isinf(v) && v > 0) return v;
-  if (v == 0) return std::bit_cast<float>(1u);  // +0 and -0: the smallest positive denormal
-  const uint32_t bits = std::bit_cast<uint32_t>(v);
-  return std::bit_cast<float>(v > 0 ? bits + 1 : bits - 1);
-}
-float next_float_down(float v) { return -next_float_up(-v); }
-}  // namespace
-
-Vec3 offset_ray_origin(Vec3 p, Vec3 p_error, Vec3 ng, Vec3 w) {
-  const float d = dot(abs(ng), p_error);
-  Vec3 offset = ng * d;
-  if (dot(w, ng) < 0) offset = -offset;
-  Vec3 po = p + offset;
-  for (int i = 0; i < 3; ++i) {  // round away from p so the offset is never lost to rounding
-    if (offset[i] > 0) po[i] = next_float_up(po[i]);
-    else if (offset[i] < 0) po[i] = next_float_down(po[i]);
-  }
-  return po;
-}
-
-Ray spawn_ray(const Hit& from, Vec3 w) {
-  return {offset_ray_origin(from.p, from.p_error, from.ng, w), w, 0, INFINITY};
-}
-
-Ray spawn_ray_to(const Hit& from, Vec3 target) {
-  const Vec3 o = offset_ray_origin(from.p, from.p_error, from.ng, target - from.p);
-  return {o, target - o, 0, 1 - 1e-4f};
-}
-
 }  // namespace lumis

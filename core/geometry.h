@@ -2,6 +2,8 @@
 // record (Hit) that materials, lights and integrators consume.
 #pragma once
 
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -13,9 +15,14 @@
 
 namespace lumis {
 
+/// Members laid out in 16-byte slots (o, tmin | d, tmax): a copy moves them 16 bytes at a time, and a Vec3 that
+/// straddled two such moves would be read back through a failed store forward (docs/performance.md).
 struct Ray {
-  Vec3 o, d;            ///< origin, direction (need not be unit; t is in units of |d|)
+  Ray() = default;
+  Ray(Vec3 o_, Vec3 d_, float tmin_ = 0, float tmax_ = INFINITY) : o(o_), tmin(tmin_), d(d_), tmax(tmax_) {}
+  Vec3 o;               ///< origin
   float tmin = 0;
+  Vec3 d;               ///< direction (need not be unit; t is in units of |d|)
   float tmax = INFINITY;
 };
 
@@ -65,13 +72,39 @@ struct Hit {
   int material = -1, light = -1;
 };
 
+/// The next float toward +infinity (std::nextafter without the library call); +infinity stays.
+inline float next_float_up(float v) {
+  if (std::isinf(v) && v > 0) return v;
+  if (v == 0) return std::bit_cast<float>(1u);  // +0 and -0: the smallest positive denormal
+  const uint32_t bits = std::bit_cast<uint32_t>(v);
+  return std::bit_cast<float>(v > 0 ? bits + 1 : bits - 1);
+}
+/// The next float toward -infinity; -infinity stays.
+inline float next_float_down(float v) { return -next_float_up(-v); }
+
 /// Offset a point with error bound p_error off a surface along its geometric normal, to the side of direction w,
 /// by the projected error bound (pbrt-v4's scheme): relative to the coordinates, so it works at any scene scale.
-Vec3 offset_ray_origin(Vec3 p, Vec3 p_error, Vec3 ng, Vec3 w);
-/// Ray from surface point p toward unit direction w.
-Ray spawn_ray(const Hit& from, Vec3 w);
-/// Shadow ray from surface point to a target point (the segment stops just short of the target).
-Ray spawn_ray_to(const Hit& from, Vec3 target);
+/// World space. Inline, like the two below: called per ray, and a returned Ray read back from memory stalls.
+inline Vec3 offset_ray_origin(Vec3 p, Vec3 p_error, Vec3 ng, Vec3 w) {
+  const float d = dot(abs(ng), p_error);
+  Vec3 offset = ng * d;
+  if (dot(w, ng) < 0) offset = -offset;
+  Vec3 po = p + offset;
+  for (int i = 0; i < 3; ++i) {  // round away from p so the offset is never lost to rounding
+    if (offset[i] > 0) po[i] = next_float_up(po[i]);
+    else if (offset[i] < 0) po[i] = next_float_down(po[i]);
+  }
+  return po;
+}
+/// Ray from surface point `from` toward unit world direction w.
+inline Ray spawn_ray(const Hit& from, Vec3 w) {
+  return {offset_ray_origin(from.p, from.p_error, from.ng, w), w, 0, INFINITY};
+}
+/// Shadow ray from surface point to a world target point (the segment stops just short of the target).
+inline Ray spawn_ray_to(const Hit& from, Vec3 target) {
+  const Vec3 o = offset_ray_origin(from.p, from.p_error, from.ng, target - from.p);
+  return {o, target - o, 0, 1 - 1e-4f};
+}
 
 /// One intersection of a ray with light geometry (see Geometry::all_light_hits).
 struct LightHitRecord {

@@ -37,7 +37,7 @@ struct MisVariant {
     const float pdf_light = c_l > 0 ? light_strategy_pdf(v.scene, v.hit, v.ctx, wi_world, c) : 0.0f;
     const float pdf = (1 - c_l) * pdf_bsdf + c_l * pdf_light;
     if (!(pdf > 0)) return std::nullopt;
-    return Scatter{wi_world, v.bsdf.f(v.wo, wi) * (std::abs(wi.z) / pdf), pdf_bsdf};
+    return std::make_optional<Scatter>(wi_world, v.bsdf.f(v.wo, wi) * (std::abs(wi.z) / pdf), pdf_bsdf);
   }
 };
 

@@ -43,10 +43,14 @@ struct PathState {
 };
 
 /// The direction a vertex continues along, and the path throughput factor f cos / p.
+/// (Constructors: std::make_optional builds these in place, see LightSample in lights/light.h.)
 struct Scatter {
+  Scatter() = default;
+  Scatter(Vec3 wi_, Color weight_, float pdf_bsdf_) : wi(wi_), pdf_bsdf(pdf_bsdf_), weight(weight_) {}
+  // In 16-byte slots (a Vec3 and a float), like Ray in core/geometry.h.
   Vec3 wi;                   ///< world direction
-  Color weight;              ///< f |cos| / p
   float pdf_bsdf = 0;        ///< BSDF density of wi (for MIS at the next emitter hit)
+  Color weight;              ///< f |cos| / p
 };
 
 /// Balance (lecture) or power heuristic weight of strategy a against b; 0 when both vanish or are not finite.
@@ -54,6 +58,9 @@ float mis_weight(float pdf_a, float pdf_b, MisHeuristic heuristic);
 
 /// A next-event-estimation sample waiting for its shadow ray: value counts when ray is unoccluded.
 struct ShadowQuery {
+  ShadowQuery() = default;
+  /// Members in order.
+  ShadowQuery(const Ray& ray_, Color value_) : ray(ray_), value(value_) {}
   Ray ray;      ///< from the vertex to the light point (world)
   Color value;  ///< f |cos| Le / (pmf pdf_light), times the MIS weight when asked (pdf_light: solid angle)
 };

@@ -26,7 +26,7 @@ struct UniformVariant {
     if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
     const Vec3 w = v.frame.to_world(wi);
     if (dot(w, v.ng) <= 0) return std::nullopt;
-    return Scatter{w, v.bsdf.f(v.wo, wi) * (std::abs(wi.z) / pdf), v.bsdf.pdf(v.wo, wi)};
+    return std::make_optional<Scatter>(w, v.bsdf.f(v.wo, wi) * (std::abs(wi.z) / pdf), v.bsdf.pdf(v.wo, wi));
   }
 };
 

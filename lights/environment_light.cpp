@@ -32,15 +32,8 @@ class EnvironmentBase : public Light {
 
  protected:
   virtual float mean_luminance() const = 0;
-  LightSample make_sample(const LightSampleContext& ctx, Vec3 wi, float pdf) const {
-    LightSample s;
-    s.wi = wi;
-    s.dist = INFINITY;
-    s.pdf = pdf;
-    s.le = le_escaped(wi);
-    s.p_light = ctx.p + wi * (2 * scene_radius_);
-    s.n_light = -wi;
-    return s;
+  std::optional<LightSample> make_sample(const LightSampleContext& ctx, Vec3 wi, float pdf) const {
+    return std::make_optional<LightSample>(le_escaped(wi), wi, INFINITY, pdf, ctx.p + wi * (2 * scene_radius_), -wi);
   }
   float scene_radius_ = 1;
 };

@@ -42,13 +42,21 @@ inline float sphere_importance(const SphereEmitter& s, const LightSampleContext&
   return hidden ? 0.0f : importance;
 }
 
+// The sample structs below have constructors so that std::make_optional<T>(members...) builds them in place: a
+// T built in a temporary and then copied into the optional is read back 16 bytes at a time from 4-byte stores, and
+// every such read waits on a failed store forward (docs/performance.md, "Store forwarding").
 struct LightSample {
-  Color le;          ///< radiance arriving at the receiver along -wi (before visibility)
+  LightSample() = default;
+  /// Members in order.
+  LightSample(Color le_, Vec3 wi_, float dist_, float pdf_, Vec3 p_light_, Vec3 n_light_)
+      : wi(wi_), dist(dist_), p_light(p_light_), pdf(pdf_), n_light(n_light_), le(le_) {}
+  // In 16-byte slots (a Vec3 and a float each), like Ray in core/geometry.h.
   Vec3 wi;           ///< unit world direction from the receiver toward the light
   float dist = 0;    ///< distance to the sampled light point (INFINITY for the environment)
-  float pdf = 0;     ///< solid-angle density of wi at the receiver
   Vec3 p_light;      ///< sampled point on the light (unused for the environment)
+  float pdf = 0;     ///< solid-angle density of wi at the receiver
   Vec3 n_light;      ///< light surface normal at p_light
+  alignas(16) Color le;  ///< radiance arriving at the receiver along -wi (before visibility)
 };
 
 class Light {

@@ -54,8 +54,8 @@ class MeshLight final : public Light {
     if (!emits_toward(t, ctx.p)) return std::nullopt;
     const Vec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2), n = normals_[t];
     const Vec2 v{std::min(u_tri, kOneMinusEpsilon), u.y};
-    LightSample s;
-    Vec3 bary;
+    Vec3 wi, p_light, bary;
+    float dist, pdf;
     // Spherical sampling fails for reasons of geometry only, never of u, so the fallback is a function of
     // (receiver, triangle) that pdf() reproduces.
     const auto ss = method_ == TriangleSampling::SphericalTriangle ? sample_spherical_triangle(ctx.p, a, b, c, v)
@@ -63,29 +63,27 @@ class MeshLight final : public Light {
     if (ss) {
       const float denom = dot(ss->w, n);
       if (denom == 0) return std::nullopt;
-      s.wi = ss->w;
-      s.dist = dot(a - ctx.p, n) / denom;
-      if (!(s.dist > 0)) return std::nullopt;
-      s.p_light = ctx.p + s.wi * s.dist;
-      s.pdf = ss->pdf;
-      bary = barycentrics(t, s.p_light);
+      wi = ss->w;
+      dist = dot(a - ctx.p, n) / denom;
+      if (!(dist > 0)) return std::nullopt;
+      p_light = ctx.p + wi * dist;
+      pdf = ss->pdf;
+      bary = barycentrics(t, p_light);
     } else {
       const Vec2 b01 = sample_uniform_triangle(v);
       bary = {b01.x, b01.y, 1 - b01.x - b01.y};
-      s.p_light = a * bary.x + b * bary.y + c * bary.z;
-      const Vec3 to_p = s.p_light - ctx.p;
+      p_light = a * bary.x + b * bary.y + c * bary.z;
+      const Vec3 to_p = p_light - ctx.p;
       const float dist2 = length_squared(to_p);
-      s.dist = std::sqrt(dist2);
-      if (!(s.dist > 0)) return std::nullopt;
-      s.wi = to_p / s.dist;
-      const float cos_l = std::abs(dot(n, s.wi));
+      dist = std::sqrt(dist2);
+      if (!(dist > 0)) return std::nullopt;
+      wi = to_p / dist;
+      const float cos_l = std::abs(dot(n, wi));
       if (!(cos_l > 0)) return std::nullopt;
-      s.pdf = dist2 / (cos_l * area_[t]);
+      pdf = dist2 / (cos_l * area_[t]);
     }
-    s.pdf *= triangles_.pmf(t);
-    s.n_light = n;
-    s.le = radiance_at(t, bary);
-    return s;
+    pdf *= triangles_.pmf(t);
+    return std::make_optional<LightSample>(radiance_at(t, bary), wi, dist, pdf, p_light, n);
   }
 
   /// Solid angle at ctx.p for the triangle on_light.prim_id (a direction crossing several triangles has one such

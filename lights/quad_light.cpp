@@ -25,7 +25,8 @@ class QuadLight final : public Light {
   /// Solid angle at ctx.p; nullopt when the receiver is behind or in the plane (nothing is emitted toward it).
   std::optional<LightSample> sample(const LightSampleContext& ctx, Vec2 u) const override {
     if (!faces(ctx.p)) return std::nullopt;
-    LightSample s;
+    Vec3 wi, p_light;
+    float dist, pdf;
     // sample_spherical_rectangle fails for reasons of geometry only (never of u): then every u falls back to area.
     const auto ss = method_ == QuadSampling::SphericalRectangle && is_rectangle_
                         ? sample_spherical_rectangle(ctx.p, o_, eu_, ev_, u)
@@ -33,24 +34,22 @@ class QuadLight final : public Light {
     if (ss) {
       const float denom = dot(ss->w, n_);
       if (!(denom < 0)) return std::nullopt;
-      s.wi = ss->w;
-      s.dist = dot(o_ - ctx.p, n_) / denom;
-      s.p_light = ctx.p + s.wi * s.dist;
-      s.pdf = ss->pdf;
+      wi = ss->w;
+      dist = dot(o_ - ctx.p, n_) / denom;
+      p_light = ctx.p + wi * dist;
+      pdf = ss->pdf;
     } else {
-      s.p_light = o_ + eu_ * u.x + ev_ * u.y;
-      const Vec3 to_p = s.p_light - ctx.p;
+      p_light = o_ + eu_ * u.x + ev_ * u.y;
+      const Vec3 to_p = p_light - ctx.p;
       const float dist2 = length_squared(to_p);
-      s.dist = std::sqrt(dist2);
-      if (!(s.dist > 0)) return std::nullopt;
-      s.wi = to_p / s.dist;
-      const float cos_l = -dot(n_, s.wi);
+      dist = std::sqrt(dist2);
+      if (!(dist > 0)) return std::nullopt;
+      wi = to_p / dist;
+      const float cos_l = -dot(n_, wi);
       if (!(cos_l > 0)) return std::nullopt;
-      s.pdf = dist2 / (cos_l * area_);
+      pdf = dist2 / (cos_l * area_);
     }
-    s.n_light = n_;
-    s.le = radiance_;
-    return s;
+    return std::make_optional<LightSample>(radiance_, wi, dist, pdf, p_light, n_);
   }
 
   /// Solid angle at ctx.p, as sample() would produce wi; only on_light.p is used (never prim_id).

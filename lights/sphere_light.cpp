@@ -32,14 +32,10 @@ class SphereLight final : public Light {
     const Vec3 wi = frame.to_world({std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, z});
     // Nearest intersection of the ray with the sphere; the discriminant is >= 0 up to rounding inside the cap.
     const float t = std::max(0.0f, d * z - safe_sqrt(r_ * r_ - d2 * sin_theta * sin_theta));
-    LightSample s;
-    s.wi = wi;
-    s.dist = t;
-    s.p_light = ctx.p + wi * t;
-    s.n_light = (s.p_light - c_) * inv_r_;  // p_light is on the sphere: unit up to rounding, no square root
-    s.pdf = 1 / (2 * kPi * one_minus_cos_max);
-    s.le = dot(s.n_light, -wi) > 0 ? radiance_ : Color{};
-    return s;
+    const Vec3 p_light = ctx.p + wi * t;
+    const Vec3 n_light = (p_light - c_) * inv_r_;  // p_light is on the sphere: unit up to rounding, no square root
+    return std::make_optional<LightSample>(dot(n_light, -wi) > 0 ? radiance_ : Color{}, wi, t,
+                                           1 / (2 * kPi * one_minus_cos_max), p_light, n_light);
   }
 
   /// Solid angle at ctx.p, the same density as sample() from this receiver; on_light is a hit on the sphere.
@@ -86,14 +82,8 @@ class SphereLight final : public Light {
     const Vec3 wi = to_p / dist;
     const float cos_l = std::abs(dot(n, wi));
     if (!(cos_l > 0)) return std::nullopt;
-    LightSample s;
-    s.wi = wi;
-    s.dist = dist;
-    s.p_light = p;
-    s.n_light = n;
-    s.pdf = dist2 / (cos_l * area());
-    s.le = dot(n, -wi) > 0 ? radiance_ : Color{};
-    return s;
+    return std::make_optional<LightSample>(dot(n, -wi) > 0 ? radiance_ : Color{}, wi, dist, dist2 / (cos_l * area()),
+                                           p, n);
   }
 
   Vec3 c_;

@@ -11,10 +11,14 @@
 
 namespace lumis {
 
+/// Has a constructor so that std::make_optional<BsdfSample> builds it in place (see LightSample).
 struct BsdfSample {
+  BsdfSample() = default;
+  BsdfSample(Vec3 wi_, Color f_, float pdf_) : wi(wi_), pdf(pdf_), f(f_) {}
+  // In 16-byte slots (a Vec3 and a float), like Ray in core/geometry.h.
   Vec3 wi;       ///< sampled incident direction (local)
-  Color f;       ///< BSDF value f(wo, wi), cosine excluded
   float pdf = 0; ///< solid-angle density of wi under sample() (the full mixture density)
+  Color f;       ///< BSDF value f(wo, wi), cosine excluded
 };
 
 /// Lambertian reflection: f = albedo / pi on the upper hemisphere.

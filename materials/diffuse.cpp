@@ -24,7 +24,7 @@ std::optional<BsdfSample> DiffuseBsdf::sample(Vec3 wo, float /*u_lobe*/, Vec2 u)
   const Vec3 wi = sample_cosine_hemisphere(u);
   const float p = pdf(wo, wi);
   if (!(p > 0)) return std::nullopt;  // u on the boundary can give wi.z == 0
-  return BsdfSample{wi, f(wo, wi), p};
+  return std::make_optional<BsdfSample>(wi, f(wo, wi), p);
 }
 
 namespace {

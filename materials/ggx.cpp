@@ -44,7 +44,7 @@ std::optional<BsdfSample> GgxBsdf::sample(Vec3 wo, float /*u_lobe*/, Vec2 u) con
   // Evaluate through f() and pdf() so that a sample carries exactly what they return for (wo, wi).
   const float p = pdf(wo, wi);
   if (!(p > 0) || !std::isfinite(p)) return std::nullopt;
-  return BsdfSample{wi, f(wo, wi), p};
+  return std::make_optional<BsdfSample>(wi, f(wo, wi), p);
 }
 
 namespace {

@@ -46,7 +46,7 @@ std::optional<BsdfSample> PbrBsdf::sample(Vec3 wo, float u_lobe, Vec2 u) const {
   if (!(wi.z > 0)) return std::nullopt;
   const float p = pdf(wo, wi);
   if (!(p > 0) || !std::isfinite(p)) return std::nullopt;
-  return BsdfSample{wi, f(wo, wi), p};
+  return std::make_optional<BsdfSample>(wi, f(wo, wi), p);
 }
 
 /// glTF parameters -> lobes: diffuse albedo base (1 - m), F0 = mix(0.04, base, m), alpha = max(r^2, min alpha);
