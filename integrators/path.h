@@ -46,6 +46,7 @@ struct PathState {
 /// (Constructors: std::make_optional builds these in place, see LightSample in lights/light.h.)
 struct Scatter {
   Scatter() = default;
+  /// wi, weight, pdf_bsdf (the members themselves are ordered by slot).
   Scatter(Vec3 wi_, Color weight_, float pdf_bsdf_) : wi(wi_), pdf_bsdf(pdf_bsdf_), weight(weight_) {}
   // In 16-byte slots (a Vec3 and a float), like Ray in core/geometry.h.
   Vec3 wi;                   ///< world direction

@@ -47,7 +47,7 @@ inline float sphere_importance(const SphereEmitter& s, const LightSampleContext&
 // every such read waits on a failed store forward (docs/performance.md, "Store forwarding").
 struct LightSample {
   LightSample() = default;
-  /// Members in order.
+  /// le, wi, dist, pdf, p_light, n_light (the members themselves are ordered by slot).
   LightSample(Color le_, Vec3 wi_, float dist_, float pdf_, Vec3 p_light_, Vec3 n_light_)
       : wi(wi_), dist(dist_), p_light(p_light_), pdf(pdf_), n_light(n_light_), le(le_) {}
   // In 16-byte slots (a Vec3 and a float each), like Ray in core/geometry.h.

@@ -14,6 +14,7 @@ namespace lumis {
 /// Has a constructor so that std::make_optional<BsdfSample> builds it in place (see LightSample).
 struct BsdfSample {
   BsdfSample() = default;
+  /// wi, f, pdf (the members themselves are ordered by slot).
   BsdfSample(Vec3 wi_, Color f_, float pdf_) : wi(wi_), pdf(pdf_), f(f_) {}
   // In 16-byte slots (a Vec3 and a float), like Ray in core/geometry.h.
   Vec3 wi;       ///< sampled incident direction (local)
