@@ -3,7 +3,6 @@
 #include "core/embree_util.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <deque>
