@@ -227,11 +227,18 @@ bool Geometry::intersect(const Ray& ray, Hit& hit) const {
 }
 
 void Geometry::intersect_each(const Ray* rays, int n, const bool* active, Hit* hits, bool* found) const {
+  // In chunks of 16: every ray of a chunk is traced before its hit records are filled.
+  for (int first = 0; first < n; first += 16) {
+    const int m = std::min(16, n - first);
+    intersect_each16(rays + first, m, active + first, hits + first, found + first);
+  }
+}
+
+void Geometry::intersect_each16(const Ray* rays, int n, const bool* active, Hit* hits, bool* found) const {
   struct EmbreeHit {
     uint32_t geom_id, prim_id;
     float u, v, t;
   } raw[16];
-  n = std::min(n, 16);
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   for (int i = 0; i < n; ++i) {

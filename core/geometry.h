@@ -131,9 +131,9 @@ class Geometry {
   /// Closest hits of up to 16 coherent rays (camera rays) in one Embree packet query: found[i] and hits[i] as
   /// intersect(rays[i], hits[i]) would give, for i < n (an invalid ray is a miss).
   void intersect16(const Ray* rays, int n, Hit* hits, bool* found) const;
-  /// intersect(rays[i], hits[i]) for every i < n (n <= 16) with active[i], the same results bit for bit (found[i]
-  /// false for the others, their hits untouched); all rays are traced before any hit record is read, so that the
-  /// records' memory loads (prefetched) overlap instead of each stalling its ray.
+  /// intersect(rays[i], hits[i]) for every i < n with active[i], the same results bit for bit (found[i] false for
+  /// the others, their hits untouched); in chunks of 16, all rays of a chunk are traced before any of its hit
+  /// records is read, so that the records' memory loads (prefetched) overlap instead of each stalling its ray.
   void intersect_each(const Ray* rays, int n, const bool* active, Hit* hits, bool* found) const;
   /// Whether anything lies in (ray.tmin, ray.tmax).
   bool occluded(const Ray& ray) const;
@@ -156,6 +156,8 @@ class Geometry {
   void* embree_scene() const;
 
  private:
+  /// intersect_each for one chunk (n <= 16).
+  void intersect_each16(const Ray* rays, int n, const bool* active, Hit* hits, bool* found) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -20,10 +20,11 @@ struct PathCounters {
 };
 
 /// Up to kMaxLanes camera rays (one sample each of neighbouring pixels) whose paths an integrator traces in
-/// lockstep, one bounce of all lanes at a time, so that each bounce's queries can go to Embree as one packet.
-/// Every lane keeps its own sampler, so a lane's estimate does not depend on its neighbours.
+/// lockstep, one bounce of all lanes at a time, so that each bounce's queries can go to Embree in packets of
+/// kPacket rays. Every lane keeps its own sampler, so a lane's estimate does not depend on its neighbours.
 struct PathBatch {
-  static constexpr int kMaxLanes = 16;
+  static constexpr int kMaxLanes = 64;  ///< 8x8 pixels: a bounce's shadow rays fill most of their packets
+  static constexpr int kPacket = 16;    ///< Embree's widest packet (rtcIntersect16, rtcOccluded16)
   int n = 0;                             ///< lanes, 1..kMaxLanes
   const Ray* rays = nullptr;             ///< camera rays (world)
   const Hit* const* primary = nullptr;   ///< per lane: the camera ray's closest hit, null if it escaped; a null
@@ -31,7 +32,7 @@ struct PathBatch {
   Sampler* samplers = nullptr;           ///< per lane, started at the lane's pixel and sample index
   AovSample* aov = nullptr;              ///< per lane first-hit data (may be null)
   Color* radiance = nullptr;             ///< out: per lane radiance estimate
-  bool shadow_packets = true;            ///< trace a bounce's shadow rays with one 16-wide query (false: one by one)
+  bool shadow_packets = true;            ///< trace a bounce's shadow rays in 16-wide queries (false: one by one)
 };
 
 class Integrator {

@@ -8,9 +8,9 @@
 //                                  PathCounters& c) const;
 // Sampler dimensions per vertex are consumed in a fixed order whatever the variant, so stratification lines up:
 // light choice (1D), light position (2D), BSDF/strategy choice (1D), direction (2D), Russian roulette (1D).
-// The paths of a PathBatch (up to 16 neighbouring pixels) advance in lockstep, one bounce of every live lane at a
+// The paths of a PathBatch (up to 64 neighbouring pixels) advance in lockstep, one bounce of every live lane at a
 // time: closest hits, then shading of each lane (its next-event estimate is held as a ShadowQuery), then all of the
-// bounce's shadow rays in one Embree packet. Each lane has its own sampler and state, so its estimate is the one
+// bounce's shadow rays in 16-ray Embree packets. Each lane has its own sampler and state, so its estimate is the one
 // it would get alone (tests/app/test_end_to_end.cpp checks this bit for bit).
 #pragma once
 
@@ -95,7 +95,7 @@ class PathIntegrator final : public Integrator {
   const char* name() const override { return name_; }
 
   void li(const Scene& scene, const PathBatch& batch, PathCounters& counters) const override {
-    constexpr int kLanes = PathBatch::kMaxLanes;
+    constexpr int kLanes = PathBatch::kMaxLanes, kPacket = PathBatch::kPacket;
     const int n = std::min(batch.n, kLanes);
     // Per lane: the current ray and its hit, throughput, what the previous vertex passes on, whether it goes on.
     Ray rays[kLanes];
@@ -139,13 +139,16 @@ class PathIntegrator final : public Integrator {
         if (has_shadow) owner[n_shadow++] = k;
       }
 
-      // Shadow rays of this bounce.
+      // Shadow rays of this bounce, in packets of 16 (the live lanes' rays are packed together, so every packet
+      // but the last is full); a lone ray goes alone.
       if (n_shadow == 0) continue;
-      if (batch.shadow_packets && n_shadow > 1) {
-        for (int i = 0; i < n_shadow; ++i) shadow_rays[i] = shadow[i].ray;
-        scene.geometry.occluded16(shadow_rays, n_shadow, occluded);
-      } else {
-        for (int i = 0; i < n_shadow; ++i) occluded[i] = scene.geometry.occluded(shadow[i].ray);
+      for (int i = 0; i < n_shadow; ++i) shadow_rays[i] = shadow[i].ray;
+      for (int first = 0; first < n_shadow; first += kPacket) {
+        const int m = std::min(kPacket, n_shadow - first);
+        if (batch.shadow_packets && m > 1)
+          scene.geometry.occluded16(shadow_rays + first, m, occluded + first);
+        else
+          for (int i = first; i < first + m; ++i) occluded[i] = scene.geometry.occluded(shadow_rays[i]);
       }
       for (int i = 0; i < n_shadow; ++i)
         if (!occluded[i]) batch.radiance[owner[i]] += shadow[i].value;

@@ -17,9 +17,10 @@ namespace lumis {
 
 namespace {
 
-constexpr int kTile = 16;  // a multiple of the packet block
-constexpr int kLanes = PathBatch::kMaxLanes, kBlock = 4;  // a PathBatch: 4x4 pixels, one rtcIntersect16
-static_assert(kBlock * kBlock == kLanes && kTile % kBlock == 0);
+constexpr int kTile = 16;  // a multiple of the batch block
+// A PathBatch: 8x8 pixels, their camera rays as four rtcIntersect16 packets of 4x4 pixels.
+constexpr int kLanes = PathBatch::kMaxLanes, kBlock = 8, kPacketSide = 4;
+static_assert(kBlock * kBlock == kLanes && kPacketSide * kPacketSide == PathBatch::kPacket && kTile % kBlock == 0);
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -81,22 +82,31 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
           const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
           for (int by = y0; by < y1; by += kBlock)
             for (int bx = x0; bx < x1; bx += kBlock) {
-              const int w = std::min(kBlock, x1 - bx), h = std::min(kBlock, y1 - by), n = w * h;
+              // The block's pixels (clipped to the tile) as lanes, 4x4 sub-block by sub-block: each sub-block's
+              // camera rays are one coherent packet.
+              const int bw = std::min(kBlock, x1 - bx), bh = std::min(kBlock, y1 - by);
+              int px[kLanes], py[kLanes], packet_end[kLanes / PathBatch::kPacket];
+              int n = 0, n_packets = 0;
+              for (int sy = 0; sy < bh; sy += kPacketSide)
+                for (int sx = 0; sx < bw; sx += kPacketSide) {
+                  for (int y = sy; y < std::min(sy + kPacketSide, bh); ++y)
+                    for (int x = sx; x < std::min(sx + kPacketSide, bw); ++x) px[n] = bx + x, py[n++] = by + y;
+                  packet_end[n_packets++] = n;
+                }
               batch.n = n;
               for (uint32_t i = begin; i < end; ++i) {
                 for (int k = 0; k < n; ++k) {
-                  const int x = bx + k % w, y = by + k / w;
-                  samplers[k].start(static_cast<uint32_t>(x), static_cast<uint32_t>(y), i);
+                  samplers[k].start(static_cast<uint32_t>(px[k]), static_cast<uint32_t>(py[k]), i);
                   const Vec2 jitter = samplers[k].get2d();  // box filter: uniform over the pixel
-                  rays[k] = camera.generate_ray({x + jitter.x, y + jitter.y});
+                  rays[k] = camera.generate_ray({px[k] + jitter.x, py[k] + jitter.y});
                 }
                 if (packets) {
-                  scene.geometry.intersect16(rays, n, hits, found);
+                  for (int p = 0, first = 0; p < n_packets; first = packet_end[p++])
+                    scene.geometry.intersect16(rays + first, packet_end[p] - first, hits + first, found + first);
                   for (int k = 0; k < n; ++k) primary[k] = found[k] ? &hits[k] : nullptr;
                 }
                 integrator.li(scene, batch, local);
-                for (int k = 0; k < n; ++k)
-                  film.add(bx + k % w, by + k / w, radiance[k], batch.aov ? &aov[k] : nullptr);
+                for (int k = 0; k < n; ++k) film.add(px[k], py[k], radiance[k], batch.aov ? &aov[k] : nullptr);
               }
             }
         }

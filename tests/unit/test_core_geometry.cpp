@@ -79,9 +79,10 @@ TEST(Geometry, EachQueryMatchesSingleRaysBitForBit) {
   Pcg32 rng(5, 9);
   int hits = 0, misses = 0;
   for (int batch = 0; batch < 32; ++batch) {
-    const int n = batch % 4 == 3 ? 1 + batch % 16 : 16;
-    Ray rays[16];
-    bool active[16];
+    // Full chunks of 16, shorter ones, and several chunks (a path batch's 64 lanes, 40 of them here).
+    const int n = batch % 4 == 3 ? 1 + batch % 16 : batch % 4 == 2 ? 40 : 16;
+    Ray rays[40];
+    bool active[40];
     for (int i = 0; i < n; ++i) {
       // Incoherent rays from scattered origins above the quad, in all directions (some miss, some hit the back).
       const Vec3 o(rng.next_float() * 4 - 2, rng.next_float() * 4 - 2, rng.next_float() * 2 + 0.1f);
@@ -89,9 +90,9 @@ TEST(Geometry, EachQueryMatchesSingleRaysBitForBit) {
       rays[i] = {o, d, 1e-4f, INFINITY};
       active[i] = (i + batch) % 5 != 0;
     }
-    Hit each[16];
+    Hit each[40];
     for (Hit& h : each) h.material = -7;  // marks an untouched record
-    bool found[16];
+    bool found[40];
     g.intersect_each(rays, n, active, each, found);
     for (int i = 0; i < n; ++i) {
       if (!active[i]) {
