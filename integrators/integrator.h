@@ -23,7 +23,7 @@ struct PathCounters {
 /// lockstep, one bounce of all lanes at a time, so that each bounce's queries can go to Embree in packets of
 /// kPacket rays. Every lane keeps its own sampler, so a lane's estimate does not depend on its neighbours.
 struct PathBatch {
-  static constexpr int kMaxLanes = 64;  ///< 8x8 pixels: a bounce's shadow rays fill most of their packets
+  static constexpr int kMaxLanes = 256;  ///< 16x16 pixels: a bounce's shadow rays fill nearly all their packets
   static constexpr int kPacket = 16;    ///< Embree's widest packet (rtcIntersect16, rtcOccluded16)
   int n = 0;                             ///< lanes, 1..kMaxLanes
   const Ray* rays = nullptr;             ///< camera rays (world)

@@ -8,7 +8,7 @@
 //                                  PathCounters& c) const;
 // Sampler dimensions per vertex are consumed in a fixed order whatever the variant, so stratification lines up:
 // light choice (1D), light position (2D), BSDF/strategy choice (1D), direction (2D), Russian roulette (1D).
-// The paths of a PathBatch (up to 64 neighbouring pixels) advance in lockstep, one bounce of every live lane at a
+// The paths of a PathBatch (up to 256 neighbouring pixels) advance in lockstep, one bounce of every live lane at a
 // time: closest hits, then shading of each lane (its next-event estimate is held as a ShadowQuery), then all of the
 // bounce's shadow rays in 16-ray Embree packets. Each lane has its own sampler and state, so its estimate is the one
 // it would get alone (tests/app/test_end_to_end.cpp checks this bit for bit).

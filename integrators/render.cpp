@@ -18,8 +18,8 @@ namespace lumis {
 namespace {
 
 constexpr int kTile = 16;  // a multiple of the batch block
-// A PathBatch: 8x8 pixels, their camera rays as four rtcIntersect16 packets of 4x4 pixels.
-constexpr int kLanes = PathBatch::kMaxLanes, kBlock = 8, kPacketSide = 4;
+// A PathBatch: 16x16 pixels (a whole tile), their camera rays as rtcIntersect16 packets of 4x4 pixels.
+constexpr int kLanes = PathBatch::kMaxLanes, kBlock = 16, kPacketSide = 4;
 static_assert(kBlock * kBlock == kLanes && kPacketSide * kPacketSide == PathBatch::kPacket && kTile % kBlock == 0);
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {

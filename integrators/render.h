@@ -1,6 +1,6 @@
 // Tile-parallel rendering on TBB. Random numbers come from (pixel, sample index, seed) only, so the image is
-// bitwise identical for any thread count. The paths of an 8x8-pixel block are traced in lockstep (PathBatch): its
-// camera rays go to Embree as four 16-ray packets of 4x4 pixels, and each bounce's shadow rays in 16-ray packets.
+// bitwise identical for any thread count. The paths of a 16x16-pixel tile are traced in lockstep (PathBatch): its
+// camera rays go to Embree as 16-ray packets of 4x4 pixels, and each bounce's shadow rays in 16-ray packets.
 // Rendering proceeds in passes of whole samples per pixel, so a time budget or a cancel request stops at a sample
 // boundary with every pixel at the same count.
 #pragma once
@@ -25,7 +25,7 @@ struct RenderOptions {
   double time_budget = 0;                 ///< seconds; 0 = render all spp
   int threads = 0;                        ///< 0 = all cores
   bool camera_packets = true;             ///< trace camera rays in 4x4-pixel packets of 16 (false: one by one)
-  bool shadow_packets = true;             ///< trace each bounce's shadow rays of an 8x8 block in 16-ray packets
+  bool shadow_packets = true;             ///< trace each bounce's shadow rays of a tile in 16-ray packets
   const std::atomic<bool>* cancel = nullptr;
   std::function<void(const RenderProgress&)> on_progress;  ///< called from the calling thread between tiles
 };

@@ -2,7 +2,7 @@
 //  - determinism: the same scene, seed and spp give bitwise-identical images with 1 and 2 threads, for every
 //    sampler (samples depend on (pixel, index, seed) only; each pixel is accumulated by one thread in order), and
 //    with rays traced in packets or one by one (to float rounding of the hit distance); the lockstep loop over
-//    an 8x8 block's paths gives what each path traced alone gives; every pixel gets its own camera rays;
+//    a 16x16 tile's paths gives what each path traced alone gives; every pixel gets its own camera rays;
 //  - scenes/furnace.json renders to its closed form: 0.8 on the diffuse sphere, 1 on the background (z-tests of
 //    region means at a Sidak-corrected alpha 0.01 over the 6 tests; fixed seed).
 #include <gtest/gtest.h>
@@ -48,7 +48,7 @@ TEST(EndToEnd, BitwiseIdenticalForAnyThreadCount) {
   }
 }
 
-// The paths of an 8x8 block are traced in lockstep; their queries go to Embree as 16-ray packets (camera rays:
+// The paths of a 16x16 tile are traced in lockstep; their queries go to Embree as 16-ray packets (camera rays:
 // rtcIntersect16 per 4x4 pixels, shadow rays: rtcOccluded16) or one by one. Every pixel keeps its own
 // sampler, so the paths are the same; Embree's kernels round the hit distance differently in the last bits
 // (measured for camera packets: 206 of 4884 values differ, by at most 8.4e-6 relative), so the images agree to
@@ -57,7 +57,7 @@ TEST(EndToEnd, BitwiseIdenticalForAnyThreadCount) {
 TEST(EndToEnd, PacketsDoNotChangeTheImage) {
   auto scene = load_scene(scene_path("cornell-sphere.json"));
   scene->settings.width = 37;
-  scene->settings.height = 22;  // partial tiles, partial 8x8 blocks and partial 4x4 packets
+  scene->settings.height = 22;  // partial tiles (batches) and partial 4x4 packets
   const auto worst_difference = [](const Image& a, const Image& b) {
     EXPECT_EQ(a.data.size(), b.data.size());
     double worst = 0;
@@ -75,9 +75,9 @@ TEST(EndToEnd, PacketsDoNotChangeTheImage) {
   }
 }
 
-// The lockstep loop against paths traced alone: a full PathBatch (64 lanes, 8x8 pixels) gives each lane's radiance
-// and AOV exactly as a batch of that lane alone (shadow packets off, camera rays traced by li: the same Embree
-// calls, so bit for bit), for every variant and several samples per lane, on two scenes (one light; several
+// The lockstep loop against paths traced alone: a full PathBatch (256 lanes, 16x16 pixels) gives each lane's
+// radiance and AOV exactly as a batch of that lane alone (shadow packets off, camera rays traced by li: the same
+// Embree calls, so bit for bit), for every variant and several samples per lane, on two scenes (one light; several
 // lights of three kinds). With shadow packets on (a bounce's shadow rays in several 16-ray packets), to Embree's
 // packet rounding. A lane mix-up in the lockstep bookkeeping (a shadow ray or an emission credited to the wrong
 // lane, a lane revived or dropped, a packet boundary off by one) fails it.
@@ -95,8 +95,8 @@ TEST(EndToEnd, LockstepBatchMatchesPathsTracedAlone) {
         Sampler samplers[n];
         for (int k = 0; k < n; ++k) {
           samplers[k] = Sampler(SamplerType::Independent, 8, 1);
-          samplers[k].start(10 + k % 8, 12 + k / 8, index);
-          rays[k] = camera.generate_ray({10.5f + k % 8, 12.5f + k / 8});
+          samplers[k].start(10 + k % 16, 12 + k / 16, index);
+          rays[k] = camera.generate_ray({10.5f + k % 16, 12.5f + k / 16});
         }
         for (bool shadow_packets : {false, true}) {
           Sampler lane_samplers[n];
@@ -137,7 +137,7 @@ class DirectionIntegrator final : public Integrator {
   const char* name() const override { return "direction"; }
 };
 
-// The render loop's lanes (8x8 blocks clipped to tiles and to the image, ordered 4x4 packet by packet) against
+// The render loop's lanes (16x16 tiles clipped to the image, ordered 4x4 packet by packet) against
 // the pixels they are credited to: each pixel's mean camera direction is the direction through its centre, to
 // far less than the angle between neighbouring pixels (16 stratified jitters average to within ~0.02 pixel), and
 // no pixel is left without samples. A lane credited to another pixel is at least one pixel's angle off.
