@@ -32,7 +32,7 @@ struct QuadGeometry {
 
 QuadGeometry parse_quad(const JsonNode& node) {
   QuadGeometry q{node["origin"].as_vec3(), node["edge_u"].as_vec3(), node["edge_v"].as_vec3()};
-  if (!(length(cross(q.edge_u, q.edge_v)) > 0))
+  if (!(robust_length(cross(q.edge_u, q.edge_v)) > 0))
     node["edge_v"].fail("edge_u and edge_v must be non-zero and not parallel (the quad has no area)");
   return q;
 }

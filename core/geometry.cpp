@@ -183,8 +183,9 @@ void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, 
   // with the hit point's own (an axis-aligned plane through the origin still needs an offset).
   hit.p_error = Vec3(max_component(max(abs(p0), max(abs(p1), abs(p2)))) * kErrorScale);
   const Vec3 c = cross(p1 - p0, p2 - p0);
-  const float cl = length(c);
-  hit.ng = cl > 0 ? c / cl : Vec3(0, 0, 1);
+  // Not normalize(c): |c|^2 overflows for edges beyond ~1e9 units (the triangle would get no normal).
+  const Vec3 ng = robust_normalize(c);
+  hit.ng = ng == Vec3{} ? Vec3(0, 0, 1) : ng;
   hit.ns = hit.ng;
   hit.tangent = {};
   hit.uv[0] = hit.uv[1] = {};

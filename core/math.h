@@ -66,6 +66,25 @@ inline float max_component(Vec3 a) { return std::max(a.x, std::max(a.y, a.z)); }
 inline float min_component(Vec3 a) { return std::min(a.x, std::min(a.y, a.z)); }
 inline Vec3 lerp(float t, Vec3 a, Vec3 b) { return a * (1 - t) + b * t; }
 inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+/// |a| for any finite a: where |a|^2 would overflow (components beyond ~1e15, e.g. the cross product of two
+/// 1e8-unit edges) or lose precision to underflow (below ~1e-15), a is scaled by its largest component first;
+/// elsewhere exactly length(a). 0 for a zero or non-finite a.
+inline float robust_length(Vec3 a) {
+  const float l2 = length_squared(a);
+  if (l2 >= 1e-30f && l2 <= 1e30f) return std::sqrt(l2);
+  const float m = max_component(abs(a));
+  if (!(m > 0) || !is_finite(a)) return 0;
+  return m * length({a.x / m, a.y / m, a.z / m});
+}
+/// a / |a| for any finite non-zero a, without overflow or underflow of |a|^2 (as robust_length; elsewhere exactly
+/// normalize(a)); the zero vector for a zero or non-finite a.
+inline Vec3 robust_normalize(Vec3 a) {
+  const float l2 = length_squared(a);
+  if (l2 >= 1e-30f && l2 <= 1e30f) return a / std::sqrt(l2);
+  const float m = max_component(abs(a));
+  if (!(m > 0) || !is_finite(a)) return {};
+  return normalize({a.x / m, a.y / m, a.z / m});
+}
 inline bool is_black(Color c) { return c.x == 0 && c.y == 0 && c.z == 0; }
 /// Rec.709 luminance of linear RGB.
 inline float luminance(Color c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }

@@ -29,8 +29,8 @@ class MeshLight final : public Light {
       box.expand(b);
       box.expand(c);
       const Vec3 cr = cross(b - a, c - a);
-      area_[t] = 0.5f * length(cr);
-      normals_[t] = area_[t] > 0 ? normalize(cr) : Vec3{};
+      area_[t] = 0.5f * robust_length(cr);  // not length(cr): |cr|^2 overflows for edges beyond ~1e9 units
+      normals_[t] = area_[t] > 0 ? robust_normalize(cr) : Vec3{};
       // Luminance at the centroid, plus 1% of the factor's so that a triangle whose centroid texel is black but
       // whose corners glow keeps a positive probability.
       const float lum = luminance(radiance_at(t, {1.0f / 3, 1.0f / 3, 1.0f / 3}));
@@ -132,13 +132,13 @@ class MeshLight final : public Light {
     if (!(area_[t] > 0)) return false;
     return two_sided_ || dot(p - vertex(t, 0), normals_[t]) > 0;
   }
-  // Barycentrics (weights of vertices 0, 1, 2) of a point in the plane of triangle t.
+  // Barycentrics (weights of vertices 0, 1, 2) of a point in the plane of triangle t: sub-triangle areas over the
+  // area, through the unit normal (a squared cross product would leave float's range at large or small scales).
   Vec3 barycentrics(size_t t, Vec3 p) const {
-    const Vec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2);
-    const Vec3 n2 = cross(b - a, c - a);
-    const float inv = 1 / dot(n2, n2);
-    const float b1 = dot(cross(p - a, c - a), n2) * inv;
-    const float b2 = dot(cross(b - a, p - a), n2) * inv;
+    const Vec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2), n = normals_[t];
+    const float inv = 1 / (2 * area_[t]);
+    const float b1 = dot(cross(p - a, c - a), n) * inv;
+    const float b2 = dot(cross(b - a, p - a), n) * inv;
     return {1 - b1 - b2, b1, b2};
   }
   Color radiance_at(size_t t, Vec3 bary) const {

@@ -14,8 +14,8 @@ class QuadLight final : public Light {
   QuadLight(Vec3 origin, Vec3 eu, Vec3 ev, Color radiance, QuadSampling method)
       : o_(origin), eu_(eu), ev_(ev), radiance_(radiance), method_(method) {
     const Vec3 c = cross(eu, ev);
-    area_ = length(c);
-    n_ = area_ > 0 ? c / area_ : Vec3{};
+    area_ = robust_length(c);  // not length(c): |c|^2 overflows for edges beyond ~1e9 units
+    n_ = robust_normalize(c);
     // Relative tolerance: edges typed into a scene file as (1,0,0) and (0,0,1) rotated are orthogonal only to
     // rounding; anything further off is a parallelogram and is sampled by area.
     const float lu = length(eu), lv = length(ev);

@@ -1,5 +1,5 @@
 // Faults never reach the image: non-finite samples are dropped and counted, the shipped scenes produce none, and
-// the renderer is scale invariant (a scene scaled by 1e-3 or 1e4, radiance unchanged, renders the same image).
+// the renderer is scale invariant (a scene scaled by 1e-3, 1e4 or 1e12, radiance unchanged, renders the same image).
 //
 // Scale invariance: the default Cornell box at 24x24 pixels, max depth 3, 256 spp, the unscaled render at seed 1
 // against each scaled render at seed 2 (independent samples). z-tests on 4x4-pixel block means per channel:
@@ -140,6 +140,8 @@ void expect_scale_invariant(float k) {
 
 TEST(Robustness, ScaleInvarianceSmall) { expect_scale_invariant(1e-3f); }
 TEST(Robustness, ScaleInvarianceLarge) { expect_scale_invariant(1e4f); }
+// 1e12: squared lengths of cross products (triangle normals, quad areas) overflow float; they are rescaled.
+TEST(Robustness, ScaleInvarianceHuge) { expect_scale_invariant(1e12f); }
 
 }  // namespace
 }  // namespace lumis

@@ -198,5 +198,30 @@ TEST(MeshLight, SidednessAndTextureWeights) {
   EXPECT_GT(s->pdf, 0.0f);
 }
 
+// Scaled by k (mesh and receiver), power scales by k^2 and a sample's solid-angle density and direction do not
+// change, for both methods. At 1e12 the triangles' cross products have squares beyond float's range.
+TEST(MeshLight, ScaleInvariant) {
+  const TriangleMesh unit_mesh = tetrahedron();
+  const LightSampleContext ctx{{0.1f, -2.0f, 0.3f}, {0, 1, 0}};
+  for (TriangleSampling m : {TriangleSampling::Area, TriangleSampling::SphericalTriangle}) {
+    const auto unit = make_mesh_light(unit_mesh, {1, 1, 1}, std::nullopt, false, m);
+    // A u whose triangle faces the receiver (the others' samples are empty).
+    Vec2 u{0.05f, 0.6f};
+    while (u.x < 1 && !unit->sample(ctx, u)) u.x += 0.1f;
+    const auto ref = unit->sample(ctx, u);
+    ASSERT_TRUE(ref.has_value());
+    for (float k : {1e-6f, 1e6f, 1e12f}) {
+      TriangleMesh mesh = unit_mesh;
+      for (Vec3& p : mesh.positions) p = p * k;
+      const auto light = make_mesh_light(mesh, {1, 1, 1}, std::nullopt, false, m);
+      EXPECT_NEAR(light->power() / (unit->power() * k * k), 1.0f, 1e-5f) << k;
+      const auto s = light->sample({ctx.p * k, ctx.n}, u);
+      ASSERT_TRUE(s.has_value()) << k;
+      EXPECT_NEAR(s->pdf / ref->pdf, 1.0f, 1e-4f) << k;
+      EXPECT_LT(length(s->wi - ref->wi), 1e-5f) << k;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace lumis

@@ -186,5 +186,24 @@ TEST(QuadLight, OneSidedAndHorizon) {
   EXPECT_NEAR(light->power(), kPi * 0.8f * luminance(kRadiance), 1e-4f);
 }
 
+// Scaled by k (light and receiver), power scales by k^2 and the solid-angle density and direction of a sample do
+// not change. At 1e12 the edges' cross product has a square beyond float's range (area and normal computed
+// naively come out infinite and zero), at 1e-6 the receiver is a micrometre from the quad.
+TEST(QuadLight, ScaleInvariant) {
+  const auto unit = make_quad_light(kOrigin, kEdgeU, kEdgeV, kRadiance);
+  const LightSampleContext ctx = kReceivers[0];
+  const auto ref = unit->sample(ctx, {0.3f, 0.6f});
+  ASSERT_TRUE(ref.has_value());
+  for (float k : {1e-6f, 1e6f, 1e12f}) {
+    const auto light = make_quad_light(kOrigin * k, kEdgeU * k, kEdgeV * k, kRadiance);
+    EXPECT_NEAR(light->power() / (unit->power() * k * k), 1.0f, 1e-5f) << k;
+    const auto s = light->sample({ctx.p * k, ctx.n}, {0.3f, 0.6f});
+    ASSERT_TRUE(s.has_value()) << k;
+    EXPECT_NEAR(s->pdf / ref->pdf, 1.0f, 1e-4f) << k;
+    EXPECT_LT(length(s->wi - ref->wi), 1e-5f) << k;
+    EXPECT_NEAR(s->dist / (ref->dist * k), 1.0f, 1e-4f) << k;
+  }
+}
+
 }  // namespace
 }  // namespace lumis
