@@ -26,6 +26,9 @@ constexpr int kGltfImageWidth = 512;
 // (cross products, squared distances) must fit in float: every coordinate of the geometry and the camera stays
 // within this many scene units of the origin (the framing camera stands about 6 extents away).
 constexpr float kMaxCoordinate = 1e15f;
+// At the other end, products of three lengths (Embree's intersection terms, squared areas) reach float's denormals
+// in scenes much smaller than this, and images go wrong: the geometry's bounding box must be at least this large.
+constexpr float kMinSize = 1e-12f;
 
 std::string format_number(float v) {
   char buf[32];
@@ -33,8 +36,8 @@ std::string format_number(float v) {
   return buf;
 }
 
-/// Reject geometry or a given camera (at `camera_location`; empty for a framing camera) too far from the origin
-/// for float arithmetic (see kMaxCoordinate).
+/// Reject geometry or a given camera (at `camera_location`; empty for a framing camera) too far from the origin,
+/// or geometry too small, for float arithmetic (see kMaxCoordinate, kMinSize).
 void check_extent(const Scene& scene, const std::string& path, const std::string& camera_location) {
   const Bounds3 b = scene.geometry.bounds();
   if (!b.empty()) {
@@ -43,6 +46,11 @@ void check_extent(const Scene& scene, const std::string& path, const std::string
       throw SceneError(path, "", "the geometry reaches " + format_number(extent) +
                                      " scene units from the origin; coordinates must stay within " +
                                      format_number(kMaxCoordinate) + " (scale the scene down)");
+    const float size = max_component(b.diagonal());
+    if (!(size >= kMinSize))
+      throw SceneError(path, "", "the geometry spans only " + format_number(size) +
+                                     " scene units; it must span at least " + format_number(kMinSize) +
+                                     " (scale the scene up)");
   }
   // A framing camera (no camera location) stands within about 6 extents: only a given one needs the check.
   if (!camera_location.empty() && !(max_component(abs(scene.camera.from)) <= kMaxCoordinate))

@@ -176,13 +176,25 @@ void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, 
   }
   const TriangleMesh& m = impl_->meshes[slot.index];
   const Vec3* corner = &impl_->corners[slot.index][3 * size_t(prim_id)];
-  const float b0 = 1 - b1 - b2;
   const Vec3 p0 = corner[0], p1 = corner[1], p2 = corner[2];
+  const Vec3 c = cross(p1 - p0, p2 - p0);
+  // Embree's barycentrics divide by a triple product of about |c| |cos| through a reciprocal that clamps its input
+  // at 1e-18, so on tiny triangles (|c| below ~1e-15: edges below ~3e-8 units, a scene modelled ~1e-9 too small)
+  // they are wrong, while t stays right. There they are recomputed from the hit point o + t d (sub-triangle areas
+  // over the area, through the unit normal); elsewhere Embree's, more precise, are kept.
+  if (!(length_squared(c) >= 1e-30f)) {
+    const Vec3 n = robust_normalize(c);
+    const float inv = 1 / robust_length(c);
+    if (std::isfinite(inv) && n != Vec3{}) {
+      b1 = clamp(dot(cross(hit.p - p0, p2 - p0), n) * inv, 0, 1);
+      b2 = clamp(dot(cross(p1 - p0, hit.p - p0), n) * inv, 0, 1 - b1);
+    }
+  }
+  const float b0 = 1 - b1 - b2;
   hit.p = p0 * b0 + p1 * b1 + p2 * b2;
   // The same bound on every axis: Embree's intersection error grows with the coordinates involved, not just
   // with the hit point's own (an axis-aligned plane through the origin still needs an offset).
   hit.p_error = Vec3(max_component(max(abs(p0), max(abs(p1), abs(p2)))) * kErrorScale);
-  const Vec3 c = cross(p1 - p0, p2 - p0);
   // Not normalize(c): |c|^2 overflows for edges beyond ~1e9 units (the triangle would get no normal).
   const Vec3 ng = robust_normalize(c);
   hit.ng = ng == Vec3{} ? Vec3(0, 0, 1) : ng;

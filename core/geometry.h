@@ -150,7 +150,7 @@ class Geometry {
   size_t geometry_count() const;
   size_t triangle_count() const;
   Bounds3 bounds() const;
-  /// Fill a Hit for a point given by primitive and barycentrics (used by lights sampling mesh surfaces).
+  /// Fill the Hit of a ray with primitive prim_id at Embree's barycentrics (b1, b2); hit.p holds o + t d on entry.
   void fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, Hit& hit) const;
   /// The committed RTCScene (as void*, so this header needs no Embree include); for raw-throughput benchmarks.
   void* embree_scene() const;

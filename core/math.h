@@ -66,9 +66,9 @@ inline float max_component(Vec3 a) { return std::max(a.x, std::max(a.y, a.z)); }
 inline float min_component(Vec3 a) { return std::min(a.x, std::min(a.y, a.z)); }
 inline Vec3 lerp(float t, Vec3 a, Vec3 b) { return a * (1 - t) + b * t; }
 inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
-/// |a| for any finite a: where |a|^2 would overflow (components beyond ~1e15, e.g. the cross product of two
-/// 1e8-unit edges) or lose precision to underflow (below ~1e-15), a is scaled by its largest component first;
-/// elsewhere exactly length(a). 0 for a zero or non-finite a.
+/// |a| for any finite a. |a|^2 overflows float for |a| beyond ~1e19 (the cross product of two ~4e9-unit edges) and
+/// underflows below ~1e-19, so outside 1e-15 <= |a| <= 1e15 a is scaled by its largest component first; inside,
+/// exactly length(a). 0 for a zero or non-finite a.
 inline float robust_length(Vec3 a) {
   const float l2 = length_squared(a);
   if (l2 >= 1e-30f && l2 <= 1e30f) return std::sqrt(l2);

@@ -1,5 +1,6 @@
 // Faults never reach the image: non-finite samples are dropped and counted, the shipped scenes produce none, and
-// the renderer is scale invariant (a scene scaled by 1e-3, 1e4 or 1e12, radiance unchanged, renders the same image).
+// the renderer is scale invariant (a scene scaled by 1e-11, 1e-3, 1e4 or 1e12, radiance unchanged, renders the same
+// image), and a scene too small for float arithmetic is a load error.
 //
 // Scale invariance: the default Cornell box at 24x24 pixels, max depth 3, 256 spp, the unscaled render at seed 1
 // against each scaled render at seed 2 (independent samples). z-tests on 4x4-pixel block means per channel:
@@ -15,6 +16,7 @@
 #include <sstream>
 
 #include "app/json_reader.h"
+#include "app/scene_error.h"
 #include "app/scene_loader.h"
 #include "integrators/render.h"
 #include "tests/support/render_film.h"
@@ -142,6 +144,18 @@ TEST(Robustness, ScaleInvarianceSmall) { expect_scale_invariant(1e-3f); }
 TEST(Robustness, ScaleInvarianceLarge) { expect_scale_invariant(1e4f); }
 // 1e12: squared lengths of cross products (triangle normals, quad areas) overflow float; they are rescaled.
 TEST(Robustness, ScaleInvarianceHuge) { expect_scale_invariant(1e12f); }
+// 1e-11: Embree's barycentrics are wrong on triangles this small (its reciprocal clamps at 1e-18); recomputed.
+TEST(Robustness, ScaleInvarianceTiny) { expect_scale_invariant(1e-11f); }
+
+// Below the smallest size lumis can render, the loader says so instead of rendering a wrong image.
+TEST(Robustness, TooSmallSceneIsAClearError) {
+  try {
+    load_scene_text(scaled_cornell(1e-14f), scenes_dir() + "/cornell-tiny.json");
+    FAIL() << "a scene 2e-14 units across loaded";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("scale the scene up"), std::string::npos) << e.what();
+  }
+}
 
 }  // namespace
 }  // namespace lumis

@@ -199,5 +199,40 @@ TEST(Geometry, AlphaMaskedSurfaceIsSkippedBySingleAndPacketQueries) {
   EXPECT_FALSE(occluded[2]);
 }
 
+// Hit points on tiny triangles: Embree's barycentrics go wrong when its triple products fall below 1e-18 (its
+// reciprocal clamps there; at 1e-10 units they were off by more than the triangle), so fill_hit recomputes them
+// from o + t d. Every query kind must put the hit where the ray meets the triangle, at any scale.
+TEST(Geometry, TinyTrianglesHitWhereTheRayMeetsThem) {
+  for (float s : {1.0f, 1e-8f, 1e-10f, 1e-12f}) {
+    Geometry g;
+    TriangleMesh m;
+    m.positions = {Vec3{-1, 0, -1} * s, Vec3{1, 0, -1} * s, Vec3{1, 0, 1} * s, Vec3{-1, 0, 1} * s};
+    m.indices = {0, 1, 2, 0, 2, 3};
+    m.material = 0;
+    g.add_mesh(m);
+    g.commit();
+    Ray rays[16];
+    Vec3 targets[16];
+    bool active[16];
+    for (int i = 0; i < 16; ++i) {
+      targets[i] = Vec3{0.3f - 0.05f * i, 0, -0.4f + 0.04f * i} * s;
+      const Vec3 o = Vec3{-0.7f + 0.09f * i, 2.0f, 0.3f} * s;
+      rays[i] = {o, normalize(targets[i] - o), 0, INFINITY};
+      active[i] = true;
+    }
+    Hit packet[16], each[16];
+    bool found_packet[16], found_each[16];
+    g.intersect16(rays, 16, packet, found_packet);
+    g.intersect_each(rays, 16, active, each, found_each);
+    for (int i = 0; i < 16; ++i) {
+      Hit single;
+      ASSERT_TRUE(g.intersect(rays[i], single)) << s << " " << i;
+      ASSERT_TRUE(found_packet[i] && found_each[i]) << s << " " << i;
+      for (const Hit* h : {&single, &packet[i], &each[i]})
+        EXPECT_LT(length(h->p - targets[i]), 1e-5f * s) << "scale " << s << ", ray " << i;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace lumis
