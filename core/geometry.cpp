@@ -179,8 +179,8 @@ void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, 
   const Vec3 p0 = corner[0], p1 = corner[1], p2 = corner[2];
   const Vec3 c = cross(p1 - p0, p2 - p0);
   // Embree's barycentrics divide by a triple product of about |c| |cos| through a reciprocal that clamps its input
-  // at 1e-18, so on tiny triangles (|c| below ~1e-15: edges below ~3e-8 units, a scene modelled ~1e-9 too small)
-  // they are wrong, while t stays right. There they are recomputed from the hit point o + t d (sub-triangle areas
+  // at 1e-18, so on tiny triangles (|c| below ~1e-15: edges below ~3e-8 units, as in a scene scaled by 1e-9) they
+  // are wrong, while t stays right. There they are recomputed from the hit point o + t d (sub-triangle areas
   // over the area, through the unit normal); elsewhere Embree's, more precise, are kept.
   if (!(length_squared(c) >= 1e-30f)) {
     const Vec3 n = robust_normalize(c);
