@@ -180,15 +180,11 @@ void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, 
   const Vec3 c = cross(p1 - p0, p2 - p0);
   // Embree's barycentrics divide by a triple product of about |c| |cos| through a reciprocal that clamps its input
   // at 1e-18, so on tiny triangles (|c| below ~1e-15: edges below ~3e-8 units, as in a scene scaled by 1e-9) they
-  // are wrong, while t stays right. There they are recomputed from the hit point o + t d (sub-triangle areas
-  // over the area, through the unit normal); elsewhere Embree's, more precise, are kept.
+  // are wrong, while t stays right. There they are recomputed from the hit point o + t d; elsewhere
+  // Embree's, more precise, are kept.
   if (!(length_squared(c) >= 1e-30f)) {
-    const Vec3 n = robust_normalize(c);
-    const float inv = 1 / robust_length(c);
-    if (std::isfinite(inv) && n != Vec3{}) {
-      b1 = clamp(dot(cross(hit.p - p0, p2 - p0), n) * inv, 0, 1);
-      b2 = clamp(dot(cross(p1 - p0, hit.p - p0), n) * inv, 0, 1 - b1);
-    }
+    const Vec2 b = triangle_barycentrics(hit.p, p0, p1, p2);
+    b1 = b.x, b2 = b.y;
   }
   const float b0 = 1 - b1 - b2;
   hit.p = p0 * b0 + p1 * b1 + p2 * b2;

@@ -106,6 +106,18 @@ inline Ray spawn_ray_to(const Hit& from, Vec3 target) {
   return {o, target - o, 0, 1 - 1e-4f};
 }
 
+/// Barycentrics (b1, b2: the weights of p1 and p2) of a point p in the plane of triangle (p0, p1, p2), clamped to
+/// the triangle: sub-triangle areas over the area through the unit normal, so that no squared cross product
+/// leaves float's range at very large or small scales; (0, 0) for a degenerate triangle.
+inline Vec2 triangle_barycentrics(Vec3 p, Vec3 p0, Vec3 p1, Vec3 p2) {
+  const Vec3 c = cross(p1 - p0, p2 - p0);
+  const Vec3 n = robust_normalize(c);
+  const float inv = 1 / robust_length(c);
+  if (!std::isfinite(inv) || n == Vec3{}) return {0, 0};
+  const float b1 = clamp(dot(cross(p - p0, p2 - p0), n) * inv, 0, 1);
+  return {b1, clamp(dot(cross(p1 - p0, p - p0), n) * inv, 0, 1 - b1)};
+}
+
 /// One intersection of a ray with light geometry (see Geometry::all_light_hits).
 struct LightHitRecord {
   uint32_t geom_id, prim_id;

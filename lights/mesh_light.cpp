@@ -132,14 +132,10 @@ class MeshLight final : public Light {
     if (!(area_[t] > 0)) return false;
     return two_sided_ || dot(p - vertex(t, 0), normals_[t]) > 0;
   }
-  // Barycentrics (weights of vertices 0, 1, 2) of a point in the plane of triangle t: sub-triangle areas over the
-  // area, through the unit normal (a squared cross product would leave float's range at large or small scales).
+  // Barycentrics (weights of vertices 0, 1, 2) of a point in the plane of triangle t.
   Vec3 barycentrics(size_t t, Vec3 p) const {
-    const Vec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2), n = normals_[t];
-    const float inv = 1 / (2 * area_[t]);
-    const float b1 = dot(cross(p - a, c - a), n) * inv;
-    const float b2 = dot(cross(b - a, p - a), n) * inv;
-    return {1 - b1 - b2, b1, b2};
+    const Vec2 b = triangle_barycentrics(p, vertex(t, 0), vertex(t, 1), vertex(t, 2));
+    return {1 - b.x - b.y, b.x, b.y};
   }
   Color radiance_at(size_t t, Vec3 bary) const {
     if (!texture_) return factor_;
