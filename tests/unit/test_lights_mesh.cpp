@@ -1,6 +1,7 @@
 // Mesh light, both triangle sampling methods, one- and two-sided: chi-square of directions against the sum of pdf()
 // over the ray's crossings of the mesh, the Monte Carlo solid angle against Van Oosterom-Strackee, sample().pdf ==
-// pdf() (including triangles where spherical sampling falls back to area), and the emissive-texture weights.
+// pdf() (including triangles where spherical sampling falls back to area), the emissive-texture weights, and scale
+// invariance.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // Quad light, both sampling methods: chi-square of directions against pdf() (built from a hit on the scene's
 // two-triangle mesh), the Monte Carlo solid angle against the four-angle formula, sample().pdf == pdf(), the
-// area fallback (tiny solid angle, non-rectangular parallelogram), one-sidedness and the horizon.
+// area fallback (tiny solid angle, non-rectangular parallelogram), one-sidedness and the horizon, scale invariance.
 #include <gtest/gtest.h>
 
 #include <algorithm>
