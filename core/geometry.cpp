@@ -178,22 +178,28 @@ void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, 
   const Vec3* corner = &impl_->corners[slot.index][3 * size_t(prim_id)];
   const Vec3 p0 = corner[0], p1 = corner[1], p2 = corner[2];
   const Vec3 c = cross(p1 - p0, p2 - p0);
-  // Embree's barycentrics divide by a triple product of about |c| |cos| through a reciprocal that clamps its input
-  // at 1e-18, so on tiny triangles (|c| below ~1e-15: edges below ~3e-8 units, as in a scene scaled by 1e-9) they
-  // are wrong, while t stays right. There they are recomputed from the hit point o + t d; elsewhere
-  // Embree's, more precise, are kept.
-  if (!(length_squared(c) >= 1e-30f)) {
-    const Vec2 b = triangle_barycentrics(hit.p, p0, p1, p2);
-    b1 = b.x, b2 = b.y;
+  const float c2 = length_squared(c);
+  Vec3 ng;
+  if (c2 >= 1e-30f && c2 <= 1e30f) [[likely]] {
+    ng = c / std::sqrt(c2);
+  } else {
+    // Far outside unit scale. Tiny triangles (|c| below ~1e-15: edges below ~3e-8 units, as in a scene scaled by
+    // 1e-9): Embree's barycentrics divide by a triple product of about |c| |cos| through a reciprocal that clamps
+    // its input at 1e-18, so they are wrong (t stays right) and are recomputed from the hit point o + t d. Huge
+    // ones (edges beyond ~1e8 units): |c|^2 overflows, so c is normalised by rescaling.
+    if (!(c2 >= 1e-30f)) {
+      const Vec2 b = triangle_barycentrics(hit.p, p0, p1, p2);
+      b1 = b.x, b2 = b.y;
+    }
+    ng = robust_normalize(c);
+    if (ng == Vec3{}) ng = {0, 0, 1};
   }
   const float b0 = 1 - b1 - b2;
   hit.p = p0 * b0 + p1 * b1 + p2 * b2;
   // The same bound on every axis: Embree's intersection error grows with the coordinates involved, not just
   // with the hit point's own (an axis-aligned plane through the origin still needs an offset).
   hit.p_error = Vec3(max_component(max(abs(p0), max(abs(p1), abs(p2)))) * kErrorScale);
-  // Not normalize(c): |c|^2 overflows for edges beyond ~1e9 units (the triangle would get no normal).
-  const Vec3 ng = robust_normalize(c);
-  hit.ng = ng == Vec3{} ? Vec3(0, 0, 1) : ng;
+  hit.ng = ng;
   hit.ns = hit.ng;
   hit.tangent = {};
   hit.uv[0] = hit.uv[1] = {};
