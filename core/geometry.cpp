@@ -186,8 +186,7 @@ void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, 
     // Far outside unit scale. Tiny triangles (|c| below ~1e-15: edges below ~3e-8 units, as in a scene scaled by
     // 1e-9): Embree's barycentrics come out wrong while t stays right (measured; most likely its reciprocal of a
     // triple product of about |c| |cos|, which clamps inputs below 1e-18), so they are recomputed from the hit
-    // point o + t d. Huge
-    // ones (edges beyond ~1e8 units): |c|^2 overflows, so c is normalised by rescaling.
+    // point o + t d. Huge ones (edges beyond ~1e8 units): |c|^2 overflows, so c is normalised by rescaling.
     if (!(c2 >= 1e-30f)) {
       const Vec2 b = triangle_barycentrics(hit.p, p0, p1, p2);
       b1 = b.x, b2 = b.y;
