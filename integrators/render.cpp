@@ -17,10 +17,9 @@ namespace lumis {
 
 namespace {
 
-constexpr int kTile = 16;  // a multiple of the batch block
-// A PathBatch: 16x16 pixels (a whole tile), their camera rays as rtcIntersect16 packets of 4x4 pixels.
-constexpr int kLanes = PathBatch::kMaxLanes, kBlock = 16, kPacketSide = 4;
-static_assert(kBlock * kBlock == kLanes && kPacketSide * kPacketSide == PathBatch::kPacket && kTile % kBlock == 0);
+// A tile is one PathBatch: 16x16 pixels, their camera rays as rtcIntersect16 packets of 4x4 pixels.
+constexpr int kTile = 16, kLanes = PathBatch::kMaxLanes, kPacketSide = 4;
+static_assert(kTile * kTile == kLanes && kPacketSide * kPacketSide == PathBatch::kPacket && kTile % kPacketSide == 0);
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -60,7 +59,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
       tbb::parallel_for(tbb::blocked_range<int>(0, n_tiles, 1), [&](const tbb::blocked_range<int>& r) {
         pass_sync.load(std::memory_order_acquire);
         PathCounters& local = counters.local();
-        // A block of pixels shares each sample index: their paths form one PathBatch. Each pixel keeps its own
+        // A tile of pixels shares each sample index: their paths form one PathBatch. Each pixel keeps its own
         // sampler, so the numbers (and the image) are those of one-by-one tracing.
         Sampler samplers[kLanes];
         for (Sampler& s : samplers) s = Sampler(sampler_type, spp, seed);
@@ -80,35 +79,31 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
         for (int tile = r.begin(); tile < r.end(); ++tile) {
           const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
           const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
-          for (int by = y0; by < y1; by += kBlock)
-            for (int bx = x0; bx < x1; bx += kBlock) {
-              // The block's pixels (clipped to the tile) as lanes, 4x4 sub-block by sub-block: each sub-block's
-              // camera rays are one coherent packet.
-              const int bw = std::min(kBlock, x1 - bx), bh = std::min(kBlock, y1 - by);
-              int px[kLanes], py[kLanes], packet_end[kLanes / PathBatch::kPacket];
-              int n = 0, n_packets = 0;
-              for (int sy = 0; sy < bh; sy += kPacketSide)
-                for (int sx = 0; sx < bw; sx += kPacketSide) {
-                  for (int y = sy; y < std::min(sy + kPacketSide, bh); ++y)
-                    for (int x = sx; x < std::min(sx + kPacketSide, bw); ++x) px[n] = bx + x, py[n++] = by + y;
-                  packet_end[n_packets++] = n;
-                }
-              batch.n = n;
-              for (uint32_t i = begin; i < end; ++i) {
-                for (int k = 0; k < n; ++k) {
-                  samplers[k].start(static_cast<uint32_t>(px[k]), static_cast<uint32_t>(py[k]), i);
-                  const Vec2 jitter = samplers[k].get2d();  // box filter: uniform over the pixel
-                  rays[k] = camera.generate_ray({px[k] + jitter.x, py[k] + jitter.y});
-                }
-                if (packets) {
-                  for (int p = 0, first = 0; p < n_packets; first = packet_end[p++])
-                    scene.geometry.intersect16(rays + first, packet_end[p] - first, hits + first, found + first);
-                  for (int k = 0; k < n; ++k) primary[k] = found[k] ? &hits[k] : nullptr;
-                }
-                integrator.li(scene, batch, local);
-                for (int k = 0; k < n; ++k) film.add(px[k], py[k], radiance[k], batch.aov ? &aov[k] : nullptr);
-              }
+          // The tile's pixels (clipped to the image) as lanes, 4x4 block by block: each block's camera rays are
+          // one coherent packet.
+          int px[kLanes], py[kLanes], packet_end[kLanes / PathBatch::kPacket];
+          int n = 0, n_packets = 0;
+          for (int sy = y0; sy < y1; sy += kPacketSide)
+            for (int sx = x0; sx < x1; sx += kPacketSide) {
+              for (int y = sy; y < std::min(sy + kPacketSide, y1); ++y)
+                for (int x = sx; x < std::min(sx + kPacketSide, x1); ++x) px[n] = x, py[n++] = y;
+              packet_end[n_packets++] = n;
             }
+          batch.n = n;
+          for (uint32_t i = begin; i < end; ++i) {
+            for (int k = 0; k < n; ++k) {
+              samplers[k].start(static_cast<uint32_t>(px[k]), static_cast<uint32_t>(py[k]), i);
+              const Vec2 jitter = samplers[k].get2d();  // box filter: uniform over the pixel
+              rays[k] = camera.generate_ray({px[k] + jitter.x, py[k] + jitter.y});
+            }
+            if (packets) {
+              for (int p = 0, first = 0; p < n_packets; first = packet_end[p++])
+                scene.geometry.intersect16(rays + first, packet_end[p] - first, hits + first, found + first);
+              for (int k = 0; k < n; ++k) primary[k] = found[k] ? &hits[k] : nullptr;
+            }
+            integrator.li(scene, batch, local);
+            for (int k = 0; k < n; ++k) film.add(px[k], py[k], radiance[k], batch.aov ? &aov[k] : nullptr);
+          }
         }
         pass_sync.fetch_add(1, std::memory_order_release);
       });
