@@ -3,7 +3,6 @@
 #include "app/bench.h"
 
 #include <malloc.h>
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -73,16 +72,10 @@ std::string cpu_model() {
   return "unknown";
 }
 
-double cpu_seconds() {
-  rusage u;
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
 // One render of scene.settings.integrator: wall and CPU time, rays by kind (the counts are the same every time: the
-// random numbers depend only on pixel, sample index and seed).
+// random numbers depend only on pixel, sample index and seed). With logs, every query is recorded (not timed).
 BenchVariantResult render_once(const Scene& scene, int threads, bool camera_packets = true,
-                               bool shadow_packets = true) {
+                               bool shadow_packets = true, std::vector<QueryLog>* logs = nullptr) {
   const std::unique_ptr<Integrator> integrator = make_integrator(scene.settings);
   Film film(scene.settings.width, scene.settings.height, FilmOptions{false, false, false, false});
   RenderOptions ro;
@@ -90,10 +83,11 @@ BenchVariantResult render_once(const Scene& scene, int threads, bool camera_pack
   ro.threads = threads;
   ro.camera_packets = camera_packets;
   ro.shadow_packets = shadow_packets;
-  const double c0 = cpu_seconds();
+  ro.query_logs = logs;
+  const double c0 = process_cpu_seconds();
   const RenderStats st = render(scene, *integrator, film, ro);
   BenchVariantResult v;
-  v.cpu_seconds = cpu_seconds() - c0;
+  v.cpu_seconds = process_cpu_seconds() - c0;
   v.seconds = st.seconds;
   v.integrator = integrator->name();
   v.samples = st.samples;
@@ -122,15 +116,25 @@ double raw_seconds(const BenchVariantResult& v, const RawThroughput& raw, bool p
   return s;
 }
 
-// Medians over the repetitions; each ratio pairs a render with the raw timing of the same repetition, so that
-// slow drifts of the machine's load cancel.
+// A variant's replays in one repetition: every ray by a single-ray call, and the calls as the render made them.
+struct Replays {
+  ReplayTiming single, as_called;
+};
+
+// Medians over the repetitions; each ratio pairs a render with the raw timing (and the replay) of the same
+// repetition, so that slow drifts of the machine's load cancel.
 BenchVariantResult aggregate(const std::vector<BenchVariantResult>& runs, const std::vector<RawThroughput>& raws,
-                             const RawThroughput& raw_median) {
+                             const RawThroughput& raw_median, const std::vector<Replays>& replays) {
   BenchVariantResult v = runs.back();
-  std::vector<double> wall, cpu, ratio[4];
+  std::vector<double> wall, cpu, ratio[4], own, share;
   for (size_t r = 0; r < runs.size(); ++r) {
     wall.push_back(runs[r].seconds);
     cpu.push_back(runs[r].cpu_seconds);
+    if (r < replays.size() && runs[r].seconds > 0) {
+      own.push_back(replays[r].single.wall / runs[r].seconds);
+      share.push_back(replays[r].as_called.wall / runs[r].seconds);
+      v.replay_rays = replays[r].single.rays;
+    }
     for (int k = 0; k < 4; ++k) {
       const bool packets = k & 1, use_cpu = k & 2;
       const double raw_s = raw_seconds(v, raws[r], packets, use_cpu);
@@ -149,6 +153,8 @@ BenchVariantResult aggregate(const std::vector<BenchVariantResult>& runs, const 
   v.ratio_packets = median(ratio[1]);
   v.ratio_cpu = median(ratio[2]);
   v.ratio_cpu_packets = median(ratio[3]);
+  v.ratio_own = median(own);
+  v.embree_share = median(share);
   return v;
 }
 
@@ -203,6 +209,9 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   std::vector<BenchVariantResult> single, no_camera_packets, no_shadow_packets;
   std::vector<RawThroughput> raws;
   std::unique_ptr<RawBench> raw;
+  // Each variant's queries, recorded once (an extra render, not timed) and replayed in every repetition.
+  std::vector<std::vector<QueryLog>> logs(variants.size());
+  std::vector<std::vector<Replays>> replays(variants.size());
   // Repetitions outermost: the renders and the raw timings they are compared with see the same machine load.
   for (int r = 0; r < repeat; ++r) {
     std::fprintf(stderr, "lumis bench: %s: repetition %d of %d\n", res.name.c_str(), r + 1, repeat);
@@ -217,12 +226,21 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
     if (r == 0) {  // the peak of loading and rendering, before the raw benchmark's ray buffers exist
       res.peak_rss = proc_status_bytes("VmHWM");
       raw = std::make_unique<RawBench>(*scene, s.width, s.height, threads, rays);
+      for (size_t i = 0; i < variants.size(); ++i) {
+        s.integrator = variants[i];
+        render_once(*scene, threads, true, true, &logs[i]);
+      }
     }
     raws.push_back(raw->measure());
+    for (size_t i = 0; i < variants.size(); ++i)
+      replays[i].push_back({replay_queries(scene->geometry, logs[i], threads, true),
+                            replay_queries(scene->geometry, logs[i], threads, false)});
   }
   raw.reset();
+  logs.clear();
   res.raw = median_raw(raws);
-  for (size_t i = 0; i < variants.size(); ++i) res.variants.push_back(aggregate(runs[i], raws, res.raw));
+  for (size_t i = 0; i < variants.size(); ++i)
+    res.variants.push_back(aggregate(runs[i], raws, res.raw, replays[i]));
   std::vector<double> single_rates, utilisation, cpu_eff;
   for (const BenchVariantResult& v : single) single_rates.push_back(double(v.samples) / std::max(v.seconds, 1e-12));
   res.samples_per_s_1 = median(single_rates);

@@ -74,6 +74,22 @@ class RawBench {
   std::unique_ptr<Impl> impl_;
 };
 
+/// CPU seconds of the whole process so far (all threads, user + system).
+double process_cpu_seconds();
+
+/// Embree's time for a render's own queries, replayed without shading (app/bench_replay.cpp).
+struct ReplayTiming {
+  double wall = 0, cpu = 0;  ///< seconds
+  size_t rays = 0;           ///< rays replayed (the render's RenderStats::rays when every query was logged)
+  size_t hits = 0;           ///< closest-hit rays that hit, occluded shadow rays, light queries that met a light
+};
+
+/// Trace the queries of `logs` again on `threads` threads, one task per log (a render's tile), with no shading:
+/// as they were made (coherent camera packets, shadow packets) or, with single_rays, every ray by
+/// rtcIntersect1/rtcOccluded1 (light queries are Geometry::all_light_hits either way).
+ReplayTiming replay_queries(const Geometry& geometry, const std::vector<QueryLog>& logs, int threads,
+                            bool single_rays);
+
 /// Element-wise median of several measurements.
 RawThroughput median_raw(const std::vector<RawThroughput>& runs);
 
@@ -89,6 +105,12 @@ struct BenchVariantResult {
   double raw_mix_packet_rays_per_s = 0;  ///< the same with 16-wide packets where Embree has them
   double ratio = 0, ratio_packets = 0;   ///< rays_per_s over the two raw mix rates (median over repetitions)
   double ratio_cpu = 0, ratio_cpu_packets = 0;  ///< the same per CPU-second (insensitive to other load)
+  /// Against the render's own rays: the time single-ray Embree calls take for exactly the rays this render traced
+  /// (its queries logged, then replayed without shading) over the render's time, wall clock (median).
+  double ratio_own = 0;
+  /// Embree's share of the render: the replay of the render's calls as it made them (its packets) over its time.
+  double embree_share = 0;
+  size_t replay_rays = 0;            ///< rays in the replayed logs (equal to `rays`)
 };
 
 struct SceneResult {

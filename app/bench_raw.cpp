@@ -35,26 +35,20 @@ double median(std::vector<double> v) {
 
 enum class Query { Intersect, Occluded };
 
-double cpu_seconds() {
-  rusage u;
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
 // One timing of fn over n rays in tasks of kGrain rays; fn returns a count (hits or occluded rays) so that the
 // fraction can be checked.
 Rate time_rays(tbb::task_arena& arena, size_t n, const std::function<size_t(size_t, size_t)>& fn,
                double* fraction = nullptr) {
   if (n == 0) return {};
   std::atomic<size_t> count{0};
-  const double c0 = cpu_seconds();
+  const double c0 = process_cpu_seconds();
   const auto t0 = std::chrono::steady_clock::now();
   arena.execute([&] {
     tbb::parallel_for(size_t(0), (n + kGrain - 1) / kGrain,
                       [&](size_t c) { count += fn(c * kGrain, std::min(n, (c + 1) * kGrain)); });
   });
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const double cpu = cpu_seconds() - c0;
+  const double cpu = process_cpu_seconds() - c0;
   if (fraction) *fraction = double(count.load()) / double(n);
   return {double(n) / std::max(wall, 1e-9), double(n) / std::max(cpu, 1e-6)};
 }
@@ -104,6 +98,12 @@ size_t trace16(RTCScene scene, const std::vector<Ray>& rays, size_t begin, size_
 }
 
 }  // namespace
+
+double process_cpu_seconds() {
+  rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 struct RawBench::Impl {
   const Scene& scene;

@@ -16,10 +16,8 @@ namespace {
 // own intersection arithmetic, which we do not control.
 constexpr float kErrorScale = 64 * 0x1p-24f;
 
-bool ray_is_valid(const Ray& r) {
-  return is_finite(r.o) && is_finite(r.d) && std::isfinite(r.tmin) && r.tmin >= 0 && !std::isnan(r.tmax) &&
-         r.tmax >= 0;
-}
+// The calling thread's query log (lumis bench only); one load and a predictable branch per query otherwise.
+thread_local QueryLog* t_query_log = nullptr;
 
 struct AlphaData {
   const TriangleMesh* mesh;
@@ -227,8 +225,11 @@ void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, 
   }
 }
 
+void Geometry::record_queries(QueryLog* log) { t_query_log = log; }
+
 bool Geometry::intersect(const Ray& ray, Hit& hit) const {
   if (!ray_is_valid(ray)) return false;
+  if (QueryLog* log = t_query_log) [[unlikely]] log->add(QueryLog::Call::Intersect1, &ray, 1);
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRayHit rh = to_embree(ray);
@@ -256,9 +257,11 @@ void Geometry::intersect_each16(const Ray* rays, int n, const bool* active, Hit*
   } raw[16];
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
+  QueryLog* const log = t_query_log;
   for (int i = 0; i < n; ++i) {
     found[i] = false;
     if (!active[i] || !ray_is_valid(rays[i])) continue;
+    if (log) [[unlikely]] log->add(QueryLog::Call::Intersect1, &rays[i], 1);
     RTCRayHit rh = to_embree(rays[i]);
     rtcIntersect1(impl_->scene, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
@@ -287,6 +290,7 @@ void Geometry::intersect16(const Ray* rays, int n, Hit* hits, bool* found) const
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  if (QueryLog* log = t_query_log) [[unlikely]] log->add(QueryLog::Call::Intersect16, rays, n);
   alignas(64) RTCRayHit16 p;
   alignas(64) int valid[16];
   for (int i = 0; i < 16; ++i) {
@@ -309,6 +313,7 @@ void Geometry::intersect16(const Ray* rays, int n, Hit* hits, bool* found) const
 
 bool Geometry::occluded(const Ray& ray) const {
   if (!ray_is_valid(ray)) return true;
+  if (QueryLog* log = t_query_log) [[unlikely]] log->add(QueryLog::Call::Occluded1, &ray, 1);
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRay r = to_embree(ray).ray;
@@ -317,6 +322,7 @@ bool Geometry::occluded(const Ray& ray) const {
 }
 
 void Geometry::occluded16(const Ray* rays, int n, bool* occluded) const {
+  if (QueryLog* log = t_query_log) [[unlikely]] log->add(QueryLog::Call::Occluded16, rays, n);
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   alignas(64) RTCRayHit16 p;
@@ -353,6 +359,7 @@ void collect_filter(const RTCFilterFunctionNArguments* args) {
 
 int Geometry::all_light_hits(const Ray& ray, LightHitRecord* out, int max_hits) const {
   if (!ray_is_valid(ray)) return 0;
+  if (QueryLog* log = t_query_log) [[unlikely]] log->add(QueryLog::Call::LightHits, &ray, 1);
   CollectContext ctx;
   rtcInitIntersectContext(&ctx.base);
   ctx.base.filter = collect_filter;

@@ -26,6 +26,38 @@ struct Ray {
   float tmax = INFINITY;
 };
 
+/// What Embree accepts: finite origin and direction, 0 <= tmin finite, tmax >= 0 and not NaN. Queries of other rays
+/// answer "no hit" (occluded() says occluded) without calling Embree.
+inline bool ray_is_valid(const Ray& r) {
+  return is_finite(r.o) && is_finite(r.d) && std::isfinite(r.tmin) && r.tmin >= 0 && !std::isnan(r.tmax) &&
+         r.tmax >= 0;
+}
+
+/// Every ray query made on one thread while the log is set (Geometry::record_queries), in call order: `lumis bench`
+/// times them again without shading (app/bench_replay.cpp), which gives Embree's own time for exactly a render's
+/// rays. Off (no log) in every normal render.
+struct QueryLog {
+  enum class Call : uint8_t {
+    Intersect1,   ///< rtcIntersect1 on each ray (intersect, intersect_each)
+    Intersect16,  ///< one coherent rtcIntersect16 packet (intersect16)
+    Occluded1,    ///< rtcOccluded1 (occluded)
+    Occluded16,   ///< one rtcOccluded16 packet (occluded16)
+    LightHits,    ///< all_light_hits on each ray
+  };
+  struct Entry {
+    Call call;
+    uint8_t n;       ///< rays, 1..16
+    uint32_t first;  ///< index of the first in `rays`
+  };
+  std::vector<Ray> rays;
+  std::vector<Entry> calls;
+  /// Append one call on rays[0..n) (n <= 16).
+  void add(Call call, const Ray* r, int n) {
+    calls.push_back({call, static_cast<uint8_t>(n), static_cast<uint32_t>(rays.size())});
+    rays.insert(rays.end(), r, r + n);
+  }
+};
+
 /// Alpha test for glTF alphaMode MASK: a hit is ignored when factor * texture alpha * vertex alpha < cutoff.
 struct AlphaMask {
   float cutoff = 0.5f;
@@ -166,6 +198,8 @@ class Geometry {
   void fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, Hit& hit) const;
   /// The committed RTCScene (as void*, so this header needs no Embree include); for raw-throughput benchmarks.
   void* embree_scene() const;
+  /// From now on, every query the calling thread makes (on any Geometry) is appended to log; nullptr stops.
+  static void record_queries(QueryLog* log);
 
  private:
   /// intersect_each for one chunk (n <= 16).

@@ -42,6 +42,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   const uint32_t spp = std::max(1u, options.spp);
   const bool packets = options.camera_packets;
 
+  if (options.query_logs) options.query_logs->assign(static_cast<size_t>(n_tiles), QueryLog{});
   tbb::enumerable_thread_specific<PathCounters> counters;
   RenderStats stats;
   uint32_t done = 0;
@@ -79,6 +80,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
         for (int tile = r.begin(); tile < r.end(); ++tile) {
           const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
           const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
+          if (options.query_logs) Geometry::record_queries(&(*options.query_logs)[static_cast<size_t>(tile)]);
           // The tile's pixels (clipped to the image) as lanes, 4x4 block by block: each block's camera rays are
           // one coherent packet.
           int px[kLanes], py[kLanes], packet_end[kLanes / PathBatch::kPacket];
@@ -104,6 +106,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
             integrator.li(scene, batch, local);
             for (int k = 0; k < n; ++k) film.add(px[k], py[k], radiance[k], batch.aov ? &aov[k] : nullptr);
           }
+          if (options.query_logs) Geometry::record_queries(nullptr);
         }
         pass_sync.fetch_add(1, std::memory_order_release);
       });

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "core/film.h"
 #include "integrators/integrator.h"
@@ -27,6 +28,8 @@ struct RenderOptions {
   bool camera_packets = true;             ///< trace camera rays in 4x4-pixel packets of 16 (false: one by one)
   bool shadow_packets = true;             ///< trace each bounce's shadow rays of a tile in 16-ray packets
   const std::atomic<bool>* cancel = nullptr;
+  /// When set (lumis bench): cleared, then one QueryLog per tile (row-major) records every ray query of the render.
+  std::vector<QueryLog>* query_logs = nullptr;
   std::function<void(const RenderProgress&)> on_progress;  ///< called from the calling thread between tiles
 };
 

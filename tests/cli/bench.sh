@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Smoke test of `lumis bench`: tiny settings (--quick: cornell-sphere and a 20k-triangle generated room at 32x32,
-# 1 spp), the JSON report parses and has every field, the rays split by kind add up, and --write-large-scene writes
+# 1 spp), the JSON report parses and has every field, the rays split by kind add up, the replay of each render's
+# own rays holds all of them, and --write-large-scene writes
 # a glTF that `lumis render` loads. Speeds are not checked (shared machines). Usage: bench.sh path/to/lumis
 set -uo pipefail
 LUMIS=${1:?usage: bench.sh path/to/lumis}
@@ -37,8 +38,10 @@ for s in doc["scenes"]:
         kinds = v["rays_by_kind"]
         assert sum(kinds.values()) == v["rays"], (s["name"], v)
         assert kinds["camera"] == v["samples"] == 32 * 32, (s["name"], v)
-        for k in ("samples_per_s", "rays_per_s", "raw_mix_rays_per_s", "ratio_to_raw", "ratio_to_raw_packets"):
+        for k in ("samples_per_s", "rays_per_s", "raw_mix_rays_per_s", "ratio_to_raw", "ratio_to_raw_packets",
+                  "ratio_to_own_rays", "embree_share"):
             assert v[k] > 0, (s["name"], v["integrator"], k)
+        assert v["replay_rays"] == v["rays"], (s["name"], v["integrator"], "the replay must hold every ray")
     nee = next(v for v in s["variants"] if v["integrator"] == "nee_mis")
     mis = next(v for v in s["variants"] if v["integrator"] == "mis")
     assert nee["rays_by_kind"]["shadow"] > 0 and nee["rays_by_kind"]["light_query"] == 0
