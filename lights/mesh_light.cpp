@@ -68,7 +68,7 @@ class MeshLight final : public Light {
       if (!(dist > 0)) return std::nullopt;
       p_light = ctx.p + wi * dist;
       pdf = ss->pdf;
-      bary = barycentrics(t, p_light);
+      if (texture_) bary = barycentrics(t, p_light);  // only a texture's lookup needs them
     } else {
       const Vec2 b01 = sample_uniform_triangle(v);
       bary = {b01.x, b01.y, 1 - b01.x - b01.y};
