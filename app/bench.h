@@ -15,7 +15,7 @@
 namespace lumis {
 
 struct BenchOptions {
-  std::vector<std::string> scenes;  ///< empty: the shipped scenes, the generated large scene, the shared models
+  std::vector<std::string> scenes;  ///< empty: the generated large scene, the shipped scenes, the shared models
   RenderOverrides overrides;        ///< --spp, --width, --height, --threads, --integrator (one variant only), ...
   int repeat = 3;                   ///< every figure is the median of this many runs
   bool quick = false;               ///< tiny settings for the smoke test

@@ -37,7 +37,7 @@ void register_bench_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "bench", "Measure samples/s and rays/s of every integrator against Embree's raw ray throughput");
   cmd->add_option("scenes", o.scenes,
-                  "Scene files, or @large for the generated 1M-triangle room (default: the shipped scenes, @large "
+                  "Scene files, or @large for the generated 1M-triangle room (default: @large, the shipped scenes "
                   "and the largest shared glTF models)");
   cmd->add_option("--json", o.json_out, "Write the results as JSON to this file");
   CLI::Option* repeat = cmd->add_option("--repeat", o.repeat, "Repetitions; every figure is their median")->check(CLI::Range(1, 100));
