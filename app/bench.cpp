@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -27,6 +28,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+
+// The most rays a variant's query log holds (128 MiB of rays).
+constexpr size_t kMaxLoggedRays = size_t(1) << 22;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -130,9 +134,12 @@ BenchVariantResult aggregate(const std::vector<BenchVariantResult>& runs, const 
   for (size_t r = 0; r < runs.size(); ++r) {
     wall.push_back(runs[r].seconds);
     cpu.push_back(runs[r].cpu_seconds);
-    if (r < replays.size() && runs[r].seconds > 0) {
-      own.push_back(replays[r].single.wall / runs[r].seconds);
-      share.push_back(replays[r].as_called.wall / runs[r].seconds);
+    // Per ray: the log may come from a render with fewer samples per pixel (kMaxLoggedRays).
+    const double logged = r < replays.size() ? double(replays[r].single.rays) : 0;
+    if (logged > 0 && runs[r].seconds > 0) {
+      const double scale = double(runs[r].rays) / logged / runs[r].seconds;
+      own.push_back(replays[r].single.wall * scale);
+      share.push_back(replays[r].as_called.wall * scale);
       v.replay_rays = replays[r].single.rays;
     }
     for (int k = 0; k < 4; ++k) {
@@ -226,10 +233,16 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
     if (r == 0) {  // the peak of loading and rendering, before the raw benchmark's ray buffers exist
       res.peak_rss = proc_status_bytes("VmHWM");
       raw = std::make_unique<RawBench>(*scene, s.width, s.height, threads, rays);
+      const uint32_t spp = s.spp;
       for (size_t i = 0; i < variants.size(); ++i) {
+        // At most kMaxLoggedRays rays (32 bytes each) per variant: beyond, a render with fewer samples per pixel
+        // is logged; its rays are drawn alike, and the ratios are taken per ray.
+        const double per_spp = double(runs[i][0].rays) / std::max(1u, spp);
+        s.spp = uint32_t(std::clamp(std::floor(double(kMaxLoggedRays) / std::max(per_spp, 1.0)), 1.0, double(spp)));
         s.integrator = variants[i];
         render_once(*scene, threads, true, true, &logs[i]);
       }
+      s.spp = spp;
     }
     raws.push_back(raw->measure());
     for (size_t i = 0; i < variants.size(); ++i)

@@ -105,12 +105,14 @@ struct BenchVariantResult {
   double raw_mix_packet_rays_per_s = 0;  ///< the same with 16-wide packets where Embree has them
   double ratio = 0, ratio_packets = 0;   ///< rays_per_s over the two raw mix rates (median over repetitions)
   double ratio_cpu = 0, ratio_cpu_packets = 0;  ///< the same per CPU-second (insensitive to other load)
-  /// Against the render's own rays: the time single-ray Embree calls take for exactly the rays this render traced
-  /// (its queries logged, then replayed without shading) over the render's time, wall clock (median).
+  /// Against the render's own rays: lumis rays/s over single-ray Embree calls' rays/s on exactly the rays this
+  /// render traced (its queries logged, then replayed without shading), wall clock (median).
   double ratio_own = 0;
   /// Embree's share of the render: the replay of the render's calls as it made them (its packets) over its time.
   double embree_share = 0;
-  size_t replay_rays = 0;            ///< rays in the replayed logs (equal to `rays`)
+  /// Rays in the replayed logs: `rays`, unless a render of more than 2^22 rays was logged at fewer samples per
+  /// pixel (then the two figures above are per ray).
+  size_t replay_rays = 0;
 };
 
 struct SceneResult {
