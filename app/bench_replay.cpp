@@ -21,11 +21,7 @@ size_t trace_packet(RTCScene scene, const Ray* rays, int n, bool occlusion) {
   if (!occlusion) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // camera packets, as intersect16
   alignas(64) RTCRayHit16 p;
   alignas(64) int valid[16];
-  for (int i = 0; i < 16; ++i) {
-    const bool ok = i < n && ray_is_valid(rays[i]);
-    valid[i] = ok ? -1 : 0;
-    to_embree16(ok ? rays[i] : Ray{{0, 0, 0}, {0, 0, 1}, 0, 0}, p, i);
-  }
+  to_embree16(rays, n, p, valid);
   size_t count = 0;
   if (occlusion) {
     rtcOccluded16(valid, scene, &ctx, reinterpret_cast<RTCRay16*>(&p.ray));

@@ -50,6 +50,16 @@ inline void to_embree16(const Ray& ray, RTCRayHit16& p, int i) {
   p.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
 }
 
+/// rays[0..n) (n <= 16) as a 16-wide packet: valid[i] = -1 for each valid ray, 0 for invalid and unused lanes, which
+/// still get a finite ray (Embree may read them).
+inline void to_embree16(const Ray* rays, int n, RTCRayHit16& p, int* valid) {
+  for (int i = 0; i < 16; ++i) {
+    const bool ok = i < n && ray_is_valid(rays[i]);
+    valid[i] = ok ? -1 : 0;
+    to_embree16(ok ? rays[i] : Ray{{0, 0, 0}, {0, 0, 1}, 0, 0}, p, i);
+  }
+}
+
 /// Embree wants flush-to-zero and denormals-are-zero on every thread that traces rays: set on each worker of the
 /// arena when it enters.
 class FtzObserver : public tbb::task_scheduler_observer {

@@ -293,12 +293,7 @@ void Geometry::intersect16(const Ray* rays, int n, Hit* hits, bool* found) const
   if (QueryLog* log = t_query_log) [[unlikely]] log->add(QueryLog::Call::Intersect16, rays, n);
   alignas(64) RTCRayHit16 p;
   alignas(64) int valid[16];
-  for (int i = 0; i < 16; ++i) {
-    const bool ok = i < n && ray_is_valid(rays[i]);
-    valid[i] = ok ? -1 : 0;
-    // Masked-off lanes still get a finite ray: Embree may read them.
-    to_embree16(ok ? rays[i] : Ray{{0, 0, 0}, {0, 0, 1}, 0, 0}, p, i);
-  }
+  to_embree16(rays, n, p, valid);
   rtcIntersect16(valid, impl_->scene, &ctx, &p);
   for (int i = 0; i < n; ++i) {
     found[i] = valid[i] && p.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
@@ -327,11 +322,7 @@ void Geometry::occluded16(const Ray* rays, int n, bool* occluded) const {
   rtcInitIntersectContext(&ctx);
   alignas(64) RTCRayHit16 p;
   alignas(64) int valid[16];
-  for (int i = 0; i < 16; ++i) {
-    const bool ok = i < n && ray_is_valid(rays[i]);
-    valid[i] = ok ? -1 : 0;
-    to_embree16(ok ? rays[i] : Ray{{0, 0, 0}, {0, 0, 1}, 0, 0}, p, i);  // masked-off lanes: finite too
-  }
+  to_embree16(rays, n, p, valid);
   rtcOccluded16(valid, impl_->scene, &ctx, reinterpret_cast<RTCRay16*>(&p.ray));
   for (int i = 0; i < n; ++i) occluded[i] = !valid[i] || p.ray.tfar[i] < 0;  // invalid: as occluded() says
 }
