@@ -79,9 +79,9 @@ double process_cpu_seconds();
 
 /// Embree's time for a render's own queries, replayed without shading (app/bench_replay.cpp).
 struct ReplayTiming {
-  double wall = 0, cpu = 0;  ///< seconds
-  size_t rays = 0;           ///< rays replayed (the render's RenderStats::rays when every query was logged)
-  size_t hits = 0;           ///< closest-hit rays that hit, occluded shadow rays, light queries that met a light
+  double wall = 0;   ///< seconds
+  size_t rays = 0;   ///< rays replayed (the render's RenderStats::rays when every query was logged)
+  size_t hits = 0;   ///< closest-hit rays that hit, occluded shadow rays, light queries that met a light
 };
 
 /// Trace the queries of `logs` again on `threads` threads, one task per log (a render's tile), with no shading:

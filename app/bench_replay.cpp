@@ -73,7 +73,6 @@ ReplayTiming replay_queries(const Geometry& g, const std::vector<QueryLog>& logs
   ReplayTiming out;
   for (const QueryLog& log : logs) out.rays += log.rays.size();
   std::vector<size_t> counts(logs.size());
-  const double c0 = process_cpu_seconds();
   const auto t0 = std::chrono::steady_clock::now();
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, logs.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
@@ -81,7 +80,6 @@ ReplayTiming replay_queries(const Geometry& g, const std::vector<QueryLog>& logs
     });
   });
   out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  out.cpu = process_cpu_seconds() - c0;
   for (const size_t c : counts) out.hits += c;
   return out;
 }
