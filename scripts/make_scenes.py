@@ -12,28 +12,50 @@ def mul(a, s): return [x * s for x in a]
 def cross(a, b): return [a[1]*b[2]-a[2]*b[1], a[2]*b[0]-a[0]*b[2], a[0]*b[1]-a[1]*b[0]]
 def r4(v): return [round(x, 4) for x in v]
 
+def segments_cross(p1, p2, q1, q2):
+    def side(o, a, b): return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    return side(q1, q2, p1) * side(q1, q2, p2) < 0 and side(p1, p2, q1) * side(p1, p2, q2) < 0
+
+def check_plates(plates, targets):
+    """In the y-z plane (every plate spans the same x): no segment from a point of one plate to a target (the
+    camera, the top, middle and bottom of the light row) may cross another plate."""
+    for k, (a, b) in enumerate(plates):
+        for f in (0, 0.25, 0.5, 0.75, 1):
+            s = [a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f]
+            for t in targets:
+                for j, (c, d) in enumerate(plates):
+                    assert j == k or not segments_cross(s, t, c, d), f"plate {j + 1} hides plate {k + 1} from {t}"
+
 def veach():
     # Veach's MIS scene (thesis fig. 9.2): four glossy plates of increasing roughness reflect four sphere lights of
     # radius 0.0333 .. 0.9 and equal power (radiance ~ 1/r^2) toward the camera.
-    cam, target = [0, 2, 15], [0, -2, 2.5]
+    cam, target = [0, 2, 15], [0, -2.6, 2.5]
     light_row = [0, 0, 0]
     lights = []
     for x, r, rad in [(-3.75, 0.0333, 901.803), (-1.25, 0.1, 100.0), (1.25, 0.3, 11.1111), (3.75, 0.9, 1.23457)]:
         lights.append({"type": "sphere", "center": [x, 0, 0], "radius": r, "radiance": [rad, rad, rad]})
     lights.append({"type": "sphere", "center": [10, 10, 4], "radius": 0.5, "radiance": [300, 300, 300]})
     shapes, materials = [], {"backdrop": {"type": "diffuse", "albedo": [0.25, 0.25, 0.25]}}
-    centres = [[0, -1.0, 1.2], [0, -1.9, 2.4], [0, -2.7, 3.7], [0, -3.4, 5.1]]  # far+high to near+low
+    # Plate centres (x, y, z), far+high to near+low, each tilted so that the camera sees the middle of the light row
+    # mirrored at its centre. Placed (by a search) so that no plate hides another's view of the lights or of the
+    # camera: check_plates() below fails otherwise. The first layout stacked the plates closer to the lights, and the
+    # top plate hid the left half of the row from the second one.
+    centres = [[0, -2.42, 0.84], [0, -3.07, 2.15], [0, -3.54, 3.85], [0, -3.68, 5.54]]
+    depth = 1.0  # across the plate, in the y-z plane
+    plates_yz = []
     for i, (p, rough) in enumerate(zip(centres, [0.05, 0.12, 0.25, 0.45])):
         n = norm(add(norm(sub(cam, p)), norm(sub(light_row, p))))
         t = norm(cross([1, 0, 0], n))  # in-plane direction across the plate (toward -z-ish)
-        eu, ev = [8, 0, 0], mul(t, 1.0)
+        eu, ev = [8, 0, 0], mul(t, depth)
         origin = sub(sub(p, mul(eu, 0.5)), mul(ev, 0.5))
+        plates_yz.append([[q[2], q[1]] for q in (origin, add(origin, ev))])
         # front face (edge_u x edge_v) must face the camera
         if sum(a * b for a, b in zip(cross(eu, ev), n)) < 0: origin, ev = add(origin, ev), mul(ev, -1)
         name = f"plate{i + 1}"
         materials[name] = {"type": "ggx", "f0": [0.85, 0.85, 0.85], "roughness": rough}
         shapes.append({"type": "quad", "name": name, "origin": r4(origin), "edge_u": r4(eu), "edge_v": r4(ev),
                        "material": name})
+    check_plates(plates_yz, [[cam[2], cam[1]]] + [[light_row[2], light_row[1] + dy] for dy in (-0.9, 0, 0.9)])
     shapes.append({"type": "quad", "name": "floor", "origin": [-20, -4.2, -10], "edge_u": [0, 0, 40], "edge_v": [40, 0, 0],
                    "material": "backdrop"})
     shapes.append({"type": "quad", "name": "back", "origin": [-20, -4.2, -4], "edge_u": [40, 0, 0], "edge_v": [0, 30, 0],
