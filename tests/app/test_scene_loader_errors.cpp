@@ -1,0 +1,269 @@
+// The lumis JSON scene loader on bad input: each kind fails with the exact location (JSON pointer or line:column)
+// and the telling part of the message (scenes that load: test_scene_loader.cpp).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "tests/app/scene_loader_test_util.h"
+
+namespace lumis {
+namespace {
+
+using namespace scene_test;
+
+// Syntax (line:column).
+
+TEST(SceneLoaderErrors, SyntaxErrorGivesLineAndColumn) {
+  // Line 2 lacks its comma; the parser gives up at the last character of the string "render" on line 3 (the
+  // same place nlohmann's own message names).
+  const SceneError e = load_error("{\n  \"film\": {\"width\": 5}\n  \"render\": {}\n}");
+  EXPECT_EQ(e.location, "3:10") << e.what();
+  EXPECT_NE(e.detail.find("invalid JSON"), std::string::npos) << e.what();
+  EXPECT_NE(e.detail.find("expected '}'"), std::string::npos) << e.what();
+}
+
+TEST(SceneLoaderErrors, TruncatedFileGivesPositionAtTheEnd) {
+  const SceneError e = load_error("{\n  \"film\": {\"width\": 5}");
+  EXPECT_EQ(e.location, "2:23") << e.what();
+  EXPECT_NE(e.detail.find("end of input"), std::string::npos) << e.what();
+}
+
+TEST(SceneLoaderErrors, OverflowingNumberIsRejectedWithPosition) {
+  const SceneError e = load_error("{\"film\": {\"width\": 1e999}}");
+  EXPECT_EQ(e.location, "1:24") << e.what();  // the last digit of 1e999
+  EXPECT_NE(e.detail.find("number overflow"), std::string::npos) << e.what();
+}
+
+TEST(SceneLoaderErrors, DuplicateKey) {
+  EXPECT_SCENE_ERROR(scene_with(R"("film": {"width": 64, "width": 32})"), "/film/width", "duplicate key");
+}
+
+// Errors: structure, types and unknown keys.
+
+TEST(SceneLoaderErrors, TopLevelMustBeAnObject) {
+  EXPECT_SCENE_ERROR("[1, 2]", "", "expected an object, found an array of 2 elements");
+}
+
+TEST(SceneLoaderErrors, UnknownTopLevelKeyListsValidKeys) {
+  const SceneError e = load_error(R"({"shape": []})");
+  EXPECT_EQ(e.location, "/shape");
+  EXPECT_NE(e.detail.find("unknown key \"shape\" (did you mean \"shapes\"?)"), std::string::npos) << e.what();
+  EXPECT_NE(e.detail.find("valid keys: version, camera, film, render, materials, shapes, lights"), std::string::npos)
+      << e.what();
+}
+
+TEST(SceneLoaderErrors, UnknownShapeKey) {
+  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radus": 1, "material": "m")"), "/shapes/0/radus",
+                     "did you mean \"radius\"");
+}
+
+TEST(SceneLoaderErrors, UnsupportedVersion) {
+  EXPECT_SCENE_ERROR(scene_with(R"("version": 2)"), "/version", "expected 1, found the number 2");
+}
+
+TEST(SceneLoaderErrors, WrongTypeForWidth) {
+  EXPECT_SCENE_ERROR(scene_with(R"("film": {"width": "512"})"), "/film/width",
+                     "expected an integer >= 1, found the string \"512\"");
+}
+
+TEST(SceneLoaderErrors, ZeroWidth) {
+  EXPECT_SCENE_ERROR(scene_with(R"("film": {"width": 0})"), "/film/width", "found the number 0");
+}
+
+TEST(SceneLoaderErrors, AbsurdResolution) {
+  EXPECT_SCENE_ERROR(scene_with(R"("film": {"width": 512, "height": 100000})"), "/film/height",
+                     "absurd resolution 512 x 100000: at most 16384 pixels per side");
+}
+
+TEST(SceneLoaderErrors, ZeroSpp) {
+  EXPECT_SCENE_ERROR(scene_with(R"("render": {"spp": 0})"), "/render/spp", "expected an integer in [1, 1073741824]");
+}
+
+TEST(SceneLoaderErrors, FractionalSpp) {
+  EXPECT_SCENE_ERROR(scene_with(R"("render": {"spp": 1.5})"), "/render/spp", "found the number 1.5");
+}
+
+TEST(SceneLoaderErrors, UnknownIntegratorListsValidOnes) {
+  EXPECT_SCENE_ERROR(scene_with(R"("render": {"integrator": "path"})"), "/render/integrator",
+                     "unknown integrator \"path\"; valid: uniform, bsdf, light, mis, nee_mis");
+}
+
+TEST(SceneLoaderErrors, UnknownSamplerListsValidOnes) {
+  EXPECT_SCENE_ERROR(scene_with(R"("render": {"sampler": "sobel"})"), "/render/sampler",
+                     "unknown sampler \"sobel\" (did you mean \"sobol\"?); valid: independent, stratified, sobol");
+}
+
+TEST(SceneLoaderErrors, UnknownLightSelectionListsValidOnes) {
+  EXPECT_SCENE_ERROR(scene_with(R"("render": {"light_selection": "best"})"), "/render/light_selection",
+                     "valid: uniform, power, importance");
+}
+
+TEST(SceneLoaderErrors, ProbabilityOutOfRange) {
+  EXPECT_SCENE_ERROR(scene_with(R"("render": {"mis_light_probability": 1.5})"), "/render/mis_light_probability",
+                     "expected a number in [0, 1], found the number 1.5");
+}
+
+// Errors: cameras.
+
+TEST(SceneLoaderErrors, CameraWithoutDirection) {
+  EXPECT_SCENE_ERROR(scene_with(R"("camera": {"from": [0,0,5], "to": [0,0,5]})"), "/camera/to", "must differ");
+}
+
+TEST(SceneLoaderErrors, FieldOfViewOutOfRange) {
+  EXPECT_SCENE_ERROR(scene_with(R"("camera": {"from": [0,0,5], "to": [0,0,0], "fov": 180})"), "/camera/fov",
+                     "strictly between 0 and 180");
+}
+
+// Errors: materials.
+
+TEST(SceneLoaderErrors, UnknownMaterialTypeListsValidOnes) {
+  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1, "material": "m")", R"("m": {"type": "glass"})"),
+                     "/materials/m/type", "unknown material type \"glass\"; valid: diffuse, pbr, ggx");
+}
+
+TEST(SceneLoaderErrors, AlbedoAboveOne) {
+  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1, "material": "m")",
+                                R"("m": {"type": "diffuse", "albedo": [0.5, 1.5, 0.5]})"),
+                     "/materials/m/albedo/1", "expected a number in [0, 1], found the number 1.5");
+}
+
+TEST(SceneLoaderErrors, ColorWithTwoComponents) {
+  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1, "material": "m")",
+                                R"("m": {"type": "diffuse", "albedo": [0.5, 0.5]})"),
+                     "/materials/m/albedo", "expected an array of 3 numbers, found an array of 2 elements");
+}
+
+TEST(SceneLoaderErrors, MisspelledPbrKey) {
+  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1, "material": "m")",
+                                R"("m": {"type": "pbr", "roughnes": 0.5})"),
+                     "/materials/m/roughnes", "did you mean \"roughness\"");
+}
+
+TEST(SceneLoaderErrors, MissingTextureFile) {
+  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1, "material": "m")",
+                                R"("m": {"type": "diffuse", "texture": "no-such.png"})"),
+                     "/materials/m/texture", "file not found");
+}
+
+// Errors: shapes.
+
+TEST(SceneLoaderErrors, NegativeRadius) {
+  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": -1, "material": "m")"), "/shapes/0/radius",
+                     "found the number -1");
+}
+
+TEST(SceneLoaderErrors, RadiusBeyondFloatRange) {
+  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1e39, "material": "m")"), "/shapes/0/radius",
+                     "a finite number within float range");
+}
+
+TEST(SceneLoaderErrors, UnknownMaterialReference) {
+  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1, "material": "gol")"), "/shapes/0/material",
+                     "unknown material \"gol\"; defined materials: m");
+}
+
+TEST(SceneLoaderErrors, ShapeWithoutMaterial) {
+  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1)"), "/shapes/0",
+                     "missing required key \"material\"");
+}
+
+TEST(SceneLoaderErrors, UnknownShapeTypeListsValidOnes) {
+  EXPECT_SCENE_ERROR(R"({"shapes": [{"type": "cube"}]})", "/shapes/0/type",
+                     "unknown shape type \"cube\"; valid: sphere, quad, mesh, gltf");
+}
+
+TEST(SceneLoaderErrors, DegenerateQuad) {
+  EXPECT_SCENE_ERROR(R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [{"type": "quad", "origin": [0,0,0],
+                         "edge_u": [1,0,0], "edge_v": [2,0,0], "material": "m"}]})",
+                     "/shapes/0/edge_v", "not parallel");
+}
+
+TEST(SceneLoaderErrors, MeshIndexOutOfRange) {
+  EXPECT_SCENE_ERROR(R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [{"type": "mesh", "material": "m",
+                         "positions": [[0,0,0], [1,0,0], [0,1,0]], "indices": [0, 1, 3]}]})",
+                     "/shapes/0/indices/2", "expected an integer in [0, 2], found the number 3");
+}
+
+TEST(SceneLoaderErrors, MissingGltfFile) {
+  EXPECT_SCENE_ERROR(R"({"shapes": [{"type": "gltf", "file": "missing.glb"}]})", "/shapes/0/file",
+                     "file not found");
+}
+
+TEST(SceneLoaderErrors, GltfMaterialNameNotInFile) {
+  EXPECT_SCENE_ERROR(R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [{"type": "gltf", "file": ")" + kBoxGlb +
+                         R"(", "materials": {"Blue": "m"}}]})",
+                     "/shapes/0/materials/Blue", "no material named \"Blue\"; its materials: \"Red\"");
+}
+
+TEST(SceneLoaderErrors, MatrixTogetherWithTranslate) {
+  EXPECT_SCENE_ERROR(R"({"shapes": [{"type": "gltf", "file": ")" + kBoxGlb +
+                         R"(", "transform": {"translate": [1,0,0], "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}}]})",
+                     "/shapes/0/transform/translate", "\"matrix\" replaces translate/rotate/scale");
+}
+
+// Errors: lights.
+
+TEST(SceneLoaderErrors, UnknownLightTypeListsValidOnes) {
+  EXPECT_SCENE_ERROR(R"({"lights": [{"type": "point"}]})", "/lights/0/type",
+                     "unknown light type \"point\"; valid: sphere, quad, environment");
+}
+
+TEST(SceneLoaderErrors, BlackRadiance) {
+  EXPECT_SCENE_ERROR(R"({"lights": [{"type": "sphere", "center": [0,0,0], "radius": 1, "radiance": [0,0,0]}]})",
+                     "/lights/0/radiance", "at least one positive component");
+}
+
+TEST(SceneLoaderErrors, UnknownQuadSamplingListsValidOnes) {
+  EXPECT_SCENE_ERROR(R"({"lights": [{"type": "quad", "origin": [0,0,0], "edge_u": [1,0,0], "edge_v": [0,1,0],
+                         "radiance": [1,1,1], "sampling": "solid_angle"}]})",
+                     "/lights/0/sampling", "valid: spherical_rectangle, area");
+}
+
+TEST(SceneLoaderErrors, SecondEnvironment) {
+  EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "radiance": [1,1,1]},
+                                    {"type": "environment", "radiance": [1,1,1]}]})",
+                     "/lights/1", "only one environment light");
+}
+
+TEST(SceneLoaderErrors, EnvironmentWithRadianceAndFile) {
+  EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "radiance": [1,1,1], "file": "sky.exr"}]})", "/lights/0",
+                     "exactly one of \"radiance\"");
+}
+
+TEST(SceneLoaderErrors, EnvironmentMapMustBeLinear) {
+  const std::string png = kAssets + "/gltf/BoxWithSpaces/glTF/glTF Logo With Spaces.png";
+  EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "file": ")" + png + R"("}]})", "/lights/0/file",
+                     "must be a linear .exr or .hdr file");
+}
+
+// Errors: whole files.
+
+TEST(SceneLoaderErrors, EmptyScene) {
+  EXPECT_SCENE_ERROR(R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [], "lights": []})", "",
+                     "scene is empty");
+}
+
+TEST(SceneLoaderErrors, MissingSceneFile) {
+  const std::string path = (test_dir() / "absent.json").string();
+  try {
+    load_scene(path);
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file, path);
+    EXPECT_EQ(e.location, "");
+    EXPECT_EQ(e.detail, "no such scene file");
+  }
+}
+
+TEST(SceneLoaderErrors, UnknownFileExtension) {
+  const std::string path = write_file("scene.obj", "v 0 0 0\n");
+  try {
+    load_scene(path);
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_NE(e.detail.find("unknown scene file type \".obj\"; expected .json, .gltf or .glb"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace lumis
