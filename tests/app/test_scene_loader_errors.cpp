@@ -11,6 +11,11 @@ namespace {
 
 using namespace scene_test;
 
+// The one-sphere scene with material "m" defined as `material`.
+std::string scene_with_material(const std::string& material) {
+  return scene_with("", R"("center": [0,0,0], "radius": 1, "material": "m")", material);
+}
+
 // Syntax (line:column).
 
 TEST(SceneLoaderErrors, SyntaxErrorGivesLineAndColumn) {
@@ -117,31 +122,27 @@ TEST(SceneLoaderErrors, FieldOfViewOutOfRange) {
 // Errors: materials.
 
 TEST(SceneLoaderErrors, UnknownMaterialTypeListsValidOnes) {
-  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1, "material": "m")", R"("m": {"type": "glass"})"),
+  EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "glass"})"),
                      "/materials/m/type", "unknown material type \"glass\"; valid: diffuse, pbr, ggx");
 }
 
 TEST(SceneLoaderErrors, AlbedoAboveOne) {
-  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1, "material": "m")",
-                                R"("m": {"type": "diffuse", "albedo": [0.5, 1.5, 0.5]})"),
+  EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "diffuse", "albedo": [0.5, 1.5, 0.5]})"),
                      "/materials/m/albedo/1", "expected a number in [0, 1], found the number 1.5");
 }
 
 TEST(SceneLoaderErrors, ColorWithTwoComponents) {
-  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1, "material": "m")",
-                                R"("m": {"type": "diffuse", "albedo": [0.5, 0.5]})"),
+  EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "diffuse", "albedo": [0.5, 0.5]})"),
                      "/materials/m/albedo", "expected an array of 3 numbers, found an array of 2 elements");
 }
 
 TEST(SceneLoaderErrors, MisspelledPbrKey) {
-  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1, "material": "m")",
-                                R"("m": {"type": "pbr", "roughnes": 0.5})"),
+  EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "pbr", "roughnes": 0.5})"),
                      "/materials/m/roughnes", "did you mean \"roughness\"");
 }
 
 TEST(SceneLoaderErrors, MissingTextureFile) {
-  EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1, "material": "m")",
-                                R"("m": {"type": "diffuse", "texture": "no-such.png"})"),
+  EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "diffuse", "texture": "no-such.png"})"),
                      "/materials/m/texture", "file not found");
 }
 
