@@ -59,8 +59,9 @@ inline SceneError load_error(const std::string& text, const std::string& name = 
   } while (0)
 
 // A valid scene around one sphere; `extra` adds top-level members, `sphere` replaces the sphere's members.
-inline std::string scene_with(const std::string& extra, const std::string& sphere = R"("center": [0,0,0], "radius": 1, "material": "m")",
-                       const std::string& materials = R"("m": {"type": "diffuse"})") {
+inline std::string scene_with(const std::string& extra,
+                              const std::string& sphere = R"("center": [0,0,0], "radius": 1, "material": "m")",
+                              const std::string& materials = R"("m": {"type": "diffuse"})") {
   return R"({"materials": {)" + materials + R"(}, "shapes": [{"type": "sphere", )" + sphere + "}]" +
          (extra.empty() ? "" : ", " + extra) + "}";
 }
