@@ -2,7 +2,6 @@
 // (bad input: test_scene_loader_errors.cpp).
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <regex>
 #include <string>
