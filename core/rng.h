@@ -23,19 +23,23 @@ class Pcg32 {
  public:
   Pcg32() { seed(0x853c49e6748fea9bULL, 0xda3e39cb94b95bdbULL); }
   Pcg32(uint64_t state, uint64_t seq) { seed(state, seq); }
-  void seed(uint64_t init_state, uint64_t init_seq) {
-    state_ = 0;
-    inc_ = (init_seq << 1u) | 1u;
-    next_u32();
-    state_ += init_state;
-    next_u32();
-  }
-  uint32_t next_u32() {
-    const uint64_t old = state_;
-    state_ = old * 6364136223846793005ULL + inc_;
+  void seed(uint64_t init_state, uint64_t init_seq) { seeded(init_state, init_seq, state_, inc_); }
+  uint32_t next_u32() { return step(state_, inc_); }
+  /// One step of a generator given by its state and increment (the sampler's batch kernel steps many at once).
+  static uint32_t step(uint64_t& state, uint64_t inc) {
+    const uint64_t old = state;
+    state = old * 6364136223846793005ULL + inc;
     const uint32_t xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
     const uint32_t rot = static_cast<uint32_t>(old >> 59u);
     return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31));
+  }
+  /// The first state and increment of seed(init_state, init_seq), without an object.
+  static void seeded(uint64_t init_state, uint64_t init_seq, uint64_t& state, uint64_t& inc) {
+    inc = (init_seq << 1u) | 1u;
+    state = 0;
+    step(state, inc);
+    state += init_state;
+    step(state, inc);
   }
   /// Uniform float in [0, 1).
   float next_float() { return std::min(static_cast<float>(next_u32() >> 8) * 0x1p-24f, kOneMinusEpsilon); }
@@ -54,6 +58,7 @@ class Pcg32 {
   }
 
  private:
+  friend class Sampler;  // its batch kernel (core/sampler_batch.cpp) steps many generators side by side
   uint64_t state_ = 0, inc_ = 0;
 };
 

@@ -16,7 +16,13 @@
 #include <bit>
 #include <cmath>
 
+#include "core/sampler_internal.h"
+
 namespace lumis {
+
+using sampler_detail::hash_combine_mixed;
+using sampler_detail::mixed_dim;
+using sampler_detail::permute_round;
 
 namespace {
 
@@ -71,18 +77,8 @@ float to_unit_float(uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; 
 // mask (the next power of two minus one) and shift depend on n only: the caller computes them once (permute_mask).
 uint32_t permute(uint32_t i, uint32_t n, uint32_t mask, int shift, uint64_t key) {
   if (n <= 1) return 0;
-  const uint32_t k0 = static_cast<uint32_t>(key), k1 = static_cast<uint32_t>(key >> 32);
-  do {
-    i ^= k0 & mask;
-    i = (i * 0x2c1b3c6du) & mask;
-    i ^= i >> shift;
-    i = (i + k1) & mask;
-    i = (i * ((k1 >> 3) | 1u)) & mask;
-    i ^= i >> shift;
-    i = (i * 0x297a2d39u) & mask;
-    i ^= (k0 >> 11) & mask;
-    i ^= i >> shift;
-  } while (i >= n);
+  do i = permute_round(i, mask, shift, key);
+  while (i >= n);
   return i;
 }
 
@@ -90,11 +86,6 @@ uint32_t permute_mask(uint32_t n) {
   uint32_t mask = n - 1;
   mask |= mask >> 1, mask |= mask >> 2, mask |= mask >> 4, mask |= mask >> 8, mask |= mask >> 16;
   return mask;
-}
-
-// hash_combine(a, b) with mix64(b) already computed: the sampler's per-sample and per-dimension constants.
-uint64_t hash_combine_mixed(uint64_t a, uint64_t mixed_b) {
-  return mix64(a ^ (mixed_b + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2)));
 }
 
 // mix64(d) for the first dimensions (a path of depth 8 uses 66): hash_combine(pixel, d) without one of its mixes.
@@ -106,7 +97,6 @@ struct MixedDims {
   }
 };
 const MixedDims kMixed;
-uint64_t mixed_dim(uint32_t d) { return d < kMixedDims ? kMixed.v[d] : mix64(d); }
 
 // The most nearly square factorisation spp = sx * sy with sx >= sy.
 void near_square(uint32_t spp, uint32_t* sx, uint32_t* sy) {
@@ -117,6 +107,8 @@ void near_square(uint32_t spp, uint32_t* sx, uint32_t* sy) {
 }
 
 }  // namespace
+
+uint64_t sampler_detail::mixed_dim(uint32_t d) { return d < kMixedDims ? kMixed.v[d] : mix64(d); }
 
 std::optional<SamplerType> parse_sampler_type(std::string_view name) {
   if (name == "independent") return SamplerType::Independent;
@@ -147,12 +139,16 @@ Sampler::Sampler(SamplerType type, uint32_t spp, uint32_t seed) : type_(type), s
 }
 
 void Sampler::start(uint32_t px, uint32_t py, uint32_t index) {
+  start_hashes(px, py, index);
+  rng_.seed(hash_combine(pixel_hash_, index), pixel_hash_);
+}
+
+void Sampler::start_hashes(uint32_t px, uint32_t py, uint32_t index) {
   // A renderer starts one pixel's samples in a row: its hashes are kept while the pixel (and block) stays the same.
   const bool same_pixel = has_pixel_ && px == px_ && py == py_;
   if (!same_pixel) pixel_hash_ = hash_combine(hash_combine(px, py), 0x51ed0000ULL + seed_);
   px_ = px, py_ = py, index_ = index, dim_ = 0;
   has_pixel_ = true;
-  rng_.seed(hash_combine(pixel_hash_, index), pixel_hash_);
   // Past spp, each further block of spp samples is a fresh stratified set (its own permutation).
   const uint32_t block = index / spp_;
   stratum_index_ = index - block * spp_;

@@ -41,6 +41,16 @@ class Sampler {
   /// get1d, get2d, get1d, get2d, get1d: the same values as those five calls in that order (stratified: the five
   /// strata are computed side by side, so their hashes overlap instead of waiting on each other).
   VertexDims get_vertex();
+  /// For every k < n: samplers[k].start(px[k], py[k], index), then out[k] = samplers[k].get2d() (the pixel
+  /// jitter), the same numbers bit for bit; side by side as get_vertex_batch.
+  static void start_batch(Sampler* samplers, int n, const int* px, const int* py, uint32_t index, Vec2* out,
+                          int max_level = 2);
+  /// For every i < m: out[lanes[i]] = samplers[lanes[i]].get_vertex(), the same numbers bit for bit. Stratified
+  /// samplers of one spp at one dimension (a path batch's lanes at one bounce) are done side by side, with SIMD
+  /// where the CPU has it (AVX2, AVX-512); anything else one by one. max_level caps the kernel (tests).
+  static void get_vertex_batch(Sampler* samplers, const int* lanes, int m, VertexDims* out, int max_level = 2);
+  /// The best kernel get_vertex_batch can use on this CPU: 0 baseline x86-64 (or not x86), 1 AVX2, 2 AVX-512.
+  static int batch_level();
 
   SamplerType type() const { return type_; }
   uint32_t spp() const { return spp_; }
@@ -63,6 +73,8 @@ class Sampler {
   Pcg32 rng_;
 
   uint32_t stratum(uint32_t d) const;  ///< the stratum of dimension d for this sample
+  void start_hashes(uint32_t px, uint32_t py, uint32_t index);  ///< start() but for seeding rng_
+  void batch_constants(void* batch) const;  ///< the spp-dependent constants into a batch (core/sampler_batch.cpp)
   Vec2 stratified2d(uint32_t k);       ///< point in 2D stratum k of the strata_x_ x strata_y_ grid, jittered
 };
 

@@ -113,6 +113,8 @@ class PathIntegrator final : public Integrator {
     ShadowQuery shadow[kLanes];
     bool occluded[kLanes];
     int owner[kLanes];  // lane of each shadow ray
+    VertexDims dims[kLanes];
+    int dim_lanes[kLanes];
     for (int bounce = 0;; ++bounce) {
       // Closest hits of every live lane (bounce rays one by one: 16-wide packets of them measured no faster).
       int live = 0;
@@ -128,14 +130,22 @@ class PathIntegrator final : public Integrator {
         scene.geometry.intersect_each(rays, n, alive, hits, found);
       }
 
+      // The sampler dimensions of every lane that may scatter here, side by side (a lane that then cannot
+      // scatter ends its path, so the numbers it drew go unused, as they would one lane at a time).
+      int n_dims = 0;
+      if (bounce < max_depth_)
+        for (int k = 0; k < n; ++k)
+          if (alive[k] && found[k]) dim_lanes[n_dims++] = k;
+      Sampler::get_vertex_batch(batch.samplers, dim_lanes, n_dims, dims);
+
       // Shade each live lane; its next-event estimate waits in `shadow`.
       int n_shadow = 0;
       for (int k = 0; k < n; ++k) {
         if (!alive[k]) continue;
         bool has_shadow = false;
-        alive[k] = shade(scene, bounce, rays[k], found[k], hits[k], beta[k], prev[k], batch.radiance[k],
-                         batch.samplers[k], bounce == 0 && batch.aov ? &batch.aov[k] : nullptr, shadow[n_shadow],
-                         has_shadow, counters);
+        alive[k] = shade(scene, bounce, rays[k], found[k], hits[k], beta[k], prev[k], batch.radiance[k], dims[k],
+                         bounce == 0 && batch.aov ? &batch.aov[k] : nullptr, shadow[n_shadow], has_shadow,
+                         counters);
         if (has_shadow) owner[n_shadow++] = k;
       }
 
@@ -159,7 +169,7 @@ class PathIntegrator final : public Integrator {
   // One vertex of one lane: emission, AOV, next-event sample (when has_shadow, `shadow` holds it, its value
   // already times beta), continuation (ray, beta, prev updated). Returns whether the path goes on.
   bool shade(const Scene& scene, int bounce, Ray& ray, bool found, const Hit& hit, Color& beta, PathState& prev,
-             Color& radiance, Sampler& sampler, AovSample* aov, ShadowQuery& shadow, bool& has_shadow,
+             Color& radiance, const VertexDims& u, AovSample* aov, ShadowQuery& shadow, bool& has_shadow,
              PathCounters& counters) const {
     if (!found) {
       if (scene.environment >= 0) {
@@ -184,8 +194,8 @@ class PathIntegrator final : public Integrator {
     }
     if (bounce >= max_depth_ || !can_scatter) return false;
 
-    // Dimensions: light choice, light position, strategy/lobe choice, direction, roulette (fixed order).
-    const VertexDims u = sampler.get_vertex();
+    // Dimensions (u, drawn for this vertex in li): light choice, light position, strategy/lobe choice, direction,
+    // roulette (fixed order).
     const float u_choice = u.choice, u_lobe = u.lobe, u_rr = u.rr;
     const Vec2 u_light = u.light, u_dir = u.dir;
 

@@ -70,6 +70,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
         bool found[kLanes];
         AovSample aov[kLanes];
         Color radiance[kLanes];
+        Vec2 jitter[kLanes];
         PathBatch batch;
         batch.rays = rays;
         batch.primary = packets ? primary : nullptr;
@@ -93,11 +94,8 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
             }
           batch.n = n;
           for (uint32_t i = begin; i < end; ++i) {
-            for (int k = 0; k < n; ++k) {
-              samplers[k].start(static_cast<uint32_t>(px[k]), static_cast<uint32_t>(py[k]), i);
-              const Vec2 jitter = samplers[k].get2d();  // box filter: uniform over the pixel
-              rays[k] = camera.generate_ray({px[k] + jitter.x, py[k] + jitter.y});
-            }
+            Sampler::start_batch(samplers, n, px, py, i, jitter);  // box filter: uniform over the pixel
+            for (int k = 0; k < n; ++k) rays[k] = camera.generate_ray({px[k] + jitter[k].x, py[k] + jitter[k].y});
             if (packets) {
               for (int p = 0, first = 0; p < n_packets; first = packet_end[p++])
                 scene.geometry.intersect16(rays + first, packet_end[p] - first, hits + first, found + first);
