@@ -49,7 +49,7 @@ class Sampler {
   /// samplers of one spp at one dimension (a path batch's lanes at one bounce) are done side by side, with SIMD
   /// where the CPU has it (AVX2, AVX-512); anything else one by one. max_level caps the kernel (tests).
   static void get_vertex_batch(Sampler* samplers, const int* lanes, int m, VertexDims* out, int max_level = 2);
-  /// The best kernel get_vertex_batch can use on this CPU: 0 baseline x86-64 (or not x86), 1 AVX2, 2 AVX-512.
+  /// The best kernel the batch calls can use on this CPU: 0 baseline x86-64 (or not x86), 1 AVX2, 2 AVX-512.
   static int batch_level();
 
   SamplerType type() const { return type_; }

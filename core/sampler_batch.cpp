@@ -3,7 +3,7 @@
 // quantity, a chunk of lanes at a time), the strata hashes, the PCG32 steps and the jitters are plain loops over
 // lanes that the compiler vectorises; the kernels are compiled three times (baseline x86-64, AVX2, AVX-512) and the
 // best the CPU has is picked once. They use integer arithmetic and exactly rounded float adds, multiplies and
-// conversions only, so every kernel returns what the one-lane calls return, bit for bit (Sampler.Batch* tests check
+// conversions only, so every kernel returns what the one-lane calls return, bit for bit (SamplerBatch.* tests check
 // each one the CPU can run).
 #include <algorithm>
 
