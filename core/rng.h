@@ -42,7 +42,9 @@ class Pcg32 {
     step(state, inc);
   }
   /// Uniform float in [0, 1).
-  float next_float() { return std::min(static_cast<float>(next_u32() >> 8) * 0x1p-24f, kOneMinusEpsilon); }
+  float next_float() { return to_float(next_u32()); }
+  /// next_float() of the 32 bits a step returned.
+  static float to_float(uint32_t bits) { return std::min(static_cast<float>(bits >> 8) * 0x1p-24f, kOneMinusEpsilon); }
   /// Uniform double in [0, 1).
   double next_double() {
     const uint64_t hi = next_u32(), lo = next_u32();

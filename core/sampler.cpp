@@ -21,6 +21,7 @@
 namespace lumis {
 
 using sampler_detail::hash_combine_mixed;
+using sampler_detail::in_stratum;
 using sampler_detail::mixed_dim;
 using sampler_detail::permute_round;
 
@@ -164,7 +165,7 @@ float Sampler::get1d() {
   const uint32_t d = dim_++;
   if (type_ == SamplerType::Independent) return rng_.next_float();
   if (type_ == SamplerType::Stratified)
-    return std::min((static_cast<float>(stratum(d)) + rng_.next_float()) * inv_spp_, kOneMinusEpsilon);
+    return in_stratum(stratum(d), rng_.next_float(), inv_spp_);
   const uint64_t key = hash_combine_mixed(pixel_hash_, mixed_dim(d));
   const uint32_t index = owen_scramble(index_, seed32(mix64(key)));
   return to_unit_float(owen_scramble(reverse_bits(index), seed32(mix64(key + 1))));
@@ -174,8 +175,7 @@ Vec2 Sampler::stratified2d(uint32_t k) {
   const uint32_t row = div_strata_x_ ? static_cast<uint32_t>((k * div_strata_x_) >> 32) : k / strata_x_;
   const uint32_t column = k - row * strata_x_;
   const float jx = rng_.next_float(), jy = rng_.next_float();
-  return {std::min((static_cast<float>(column) + jx) * inv_strata_x_, kOneMinusEpsilon),
-          std::min((static_cast<float>(row) + jy) * inv_strata_y_, kOneMinusEpsilon)};
+  return {in_stratum(column, jx, inv_strata_x_), in_stratum(row, jy, inv_strata_y_)};
 }
 
 Vec2 Sampler::get2d() {
@@ -208,11 +208,10 @@ VertexDims Sampler::get_vertex() {
   // the order the five separate calls draw them.
   const uint32_t d = dim_;
   dim_ += 7;
-  constexpr uint32_t kFirst[5] = {0, 1, 3, 4, 6};
   uint32_t k[5];
-  for (int i = 0; i < 5; ++i) k[i] = stratum(d + kFirst[i]);
+  for (int i = 0; i < 5; ++i) k[i] = stratum(d + sampler_detail::kVertexStrata[i]);
   const auto one = [&](uint32_t stratum_k) {
-    return std::min((static_cast<float>(stratum_k) + rng_.next_float()) * inv_spp_, kOneMinusEpsilon);
+    return in_stratum(stratum_k, rng_.next_float(), inv_spp_);
   };
   VertexDims v;
   v.choice = one(k[0]);

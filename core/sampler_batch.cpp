@@ -64,8 +64,7 @@ struct StratifiedBatch {
     }
   }
   static float one(uint32_t stratum_k, uint32_t b, float inv) {  // (stratum + next_float()) / strata
-    const float jitter = std::min(static_cast<float>(b >> 8) * 0x1p-24f, kOneMinusEpsilon);
-    return std::min((static_cast<float>(stratum_k) + jitter) * inv, kOneMinusEpsilon);
+    return sampler_detail::in_stratum(stratum_k, Pcg32::to_float(b), inv);
   }
   /// A 1D dimension (get1d) from stratum s and draw b.
   [[gnu::always_inline]] inline void value1d(int n, int s, int b, int out) {
@@ -193,8 +192,7 @@ void Sampler::get_vertex_batch(Sampler* samplers, const int* lanes, int m, Verte
   StratifiedBatch b;
   first.batch_constants(&b);
   const uint32_t d = first.dim_;
-  constexpr uint32_t kFirst[5] = {0, 1, 3, 4, 6};  // get_vertex's 1D, 2D, 1D, 2D, 1D dimensions
-  for (int j = 0; j < 5; ++j) b.mixed[j] = sampler_detail::mixed_dim(d + kFirst[j]);
+  for (int j = 0; j < 5; ++j) b.mixed[j] = sampler_detail::mixed_dim(d + sampler_detail::kVertexStrata[j]);
   for (int begin = 0; begin < m; begin += StratifiedBatch::kChunk) {
     const int n = std::min(StratifiedBatch::kChunk, m - begin);
     for (int k = 0; k < n; ++k) {

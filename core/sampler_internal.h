@@ -2,6 +2,7 @@
 // (core/sampler_batch.cpp), so that both compute the very same numbers.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "core/rng.h"
@@ -29,6 +30,14 @@ inline uint32_t permute_round(uint32_t i, uint32_t mask, int shift, uint64_t key
   i ^= (k0 >> 11) & mask;
   i ^= i >> shift;
   return i;
+}
+
+/// Offsets of get_vertex's five strata (1D, 2D, 1D, 2D, 1D) from the vertex's first dimension.
+inline constexpr uint32_t kVertexStrata[5] = {0, 1, 3, 4, 6};
+
+/// A point of stratum `stratum` of `1 / inv` strata, jittered by `jitter` in [0, 1); below 1.
+inline float in_stratum(uint32_t stratum, float jitter, float inv) {
+  return std::min((static_cast<float>(stratum) + jitter) * inv, kOneMinusEpsilon);
 }
 
 }  // namespace lumis::sampler_detail
