@@ -105,6 +105,37 @@ inline float safe_acos(float v) { return std::acos(clamp(v, -1.0f, 1.0f)); }
 inline float safe_asin(float v) { return std::asin(clamp(v, -1.0f, 1.0f)); }
 inline float sqr(float v) { return v * v; }
 
+/// sin and cos of the angle 2 pi t (t in turns, |t| <= 1e6), within one float ulp: an exact reduction to a quarter
+/// turn and the Taylor series of sin and cos there in double (truncation error below 1e-11). No branch and no
+/// library call, so a loop over many angles vectorises (lights/sphere_light_batch.cpp); a file that needs the
+/// same numbers in a vectorised and a one-at-a-time copy compiles both without contraction (-ffp-contract=off).
+inline void sincos_turns(float t, float& sin_out, float& cos_out) {
+  constexpr float kRound = 12582912.0f;  // 1.5 * 2^23: (v + kRound) - kRound rounds v to an integer
+  const float q = (4 * t + kRound) - kRound;
+  const int quadrant = static_cast<int>(q) & 3;
+  const double x = static_cast<double>(4 * t - q) * 1.5707963267948966;  // |x| <= pi/4; 4 t - q is exact
+  const double x2 = x * x;
+  const double s = x * (1 + x2 * (-1 / 6.0 + x2 * (1 / 120.0 + x2 * (-1 / 5040.0 + x2 * (1 / 362880.0 +
+                                                                                    x2 * (-1 / 39916800.0))))));
+  const double c = 1 + x2 * (-1 / 2.0 + x2 * (1 / 24.0 + x2 * (-1 / 720.0 + x2 * (1 / 40320.0 + x2 * (
+                                                                  -1 / 3628800.0 + x2 * (1 / 479001600.0))))));
+  const float sf = static_cast<float>(s), cf = static_cast<float>(c);
+  const bool odd = quadrant & 1;
+  sin_out = (quadrant & 2 ? -1.0f : 1.0f) * (odd ? cf : sf);
+  cos_out = ((quadrant + 1) & 2 ? -1.0f : 1.0f) * (odd ? sf : cf);
+}
+
+/// Storage for N objects of a trivially destructible T, left uninitialised: scratch arrays in hot loops that are
+/// written before they are read (a T[N] of the vector types above is zeroed by their member initialisers).
+template <class T, int N>
+union Uninitialised {
+  Uninitialised() {}
+  T v[N];
+  T& operator[](int i) { return v[i]; }
+  const T& operator[](int i) const { return v[i]; }
+  T* data() { return v; }
+};
+
 /// Axis-aligned bounding box.
 struct Bounds3 {
   Vec3 lo{INFINITY, INFINITY, INFINITY};

@@ -9,6 +9,7 @@
 
 #include "core/sampler.h"
 #include "core/sampler_internal.h"
+#include "core/simd.h"
 
 namespace lumis {
 namespace {
@@ -104,33 +105,19 @@ struct StratifiedBatch {
 using Kernel = void (*)(StratifiedBatch&, int, bool);
 
 void run_baseline(StratifiedBatch& b, int n, bool start) { start ? b.run_start(n) : b.run_vertex(n); }
-#if defined(__x86_64__) && defined(__GNUC__)
-[[gnu::target("avx2")]] void run_avx2(StratifiedBatch& b, int n, bool start) {
+#if LUMIS_SIMD_DISPATCH
+LUMIS_TARGET_AVX2 void run_avx2(StratifiedBatch& b, int n, bool start) { start ? b.run_start(n) : b.run_vertex(n); }
+LUMIS_TARGET_AVX512 void run_avx512(StratifiedBatch& b, int n, bool start) {
   start ? b.run_start(n) : b.run_vertex(n);
-}
-[[gnu::target("avx512f,avx512dq,avx512vl,avx512bw")]] void run_avx512(StratifiedBatch& b, int n, bool start) {
-  start ? b.run_start(n) : b.run_vertex(n);
-}
-
-int detect_level() {
-  __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-      __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"))
-    return 2;
-  return __builtin_cpu_supports("avx2") ? 1 : 0;
 }
 Kernel kernel(int level) { return level >= 2 ? run_avx512 : level == 1 ? run_avx2 : run_baseline; }
 #else
-int detect_level() { return 0; }
 Kernel kernel(int) { return run_baseline; }
 #endif
 
 }  // namespace
 
-int Sampler::batch_level() {
-  static const int level = detect_level();
-  return level;
-}
+int Sampler::batch_level() { return simd_level(); }
 
 void Sampler::batch_constants(void* batch) const {
   StratifiedBatch& b = *static_cast<StratifiedBatch*>(batch);

@@ -15,8 +15,9 @@ struct LightVariant {
   Color emission_weight(const PathState& prev, const Scene&, int, const Hit*, Vec3) const {
     return Color(prev.from_camera ? 1.0f : 0.0f);
   }
-  std::optional<ShadowQuery> direct(const Vertex& v, float u_choice, Vec2 u_light, PathCounters& c) const {
-    return sample_direct(v, u_choice, u_light, /*mis_weighted=*/false, heuristic, c);
+  static constexpr bool kLightDraws = true;
+  std::optional<ShadowQuery> direct(const Vertex& v, const LightDraw& d, PathCounters& c) const {
+    return sample_direct(v, d, /*mis_weighted=*/false, heuristic, c);
   }
   std::optional<Scatter> scatter(const Vertex& v, float, Vec2, float u_lobe, Vec2 u, PathCounters&) const {
     return scatter_bsdf(v, u_lobe, u);

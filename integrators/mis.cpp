@@ -14,7 +14,8 @@ struct MisVariant {
   float c_light;  // c_l: probability of the light strategy
 
   Color emission_weight(const PathState&, const Scene&, int, const Hit*, Vec3) const { return Color(1); }
-  std::optional<ShadowQuery> direct(const Vertex&, float, Vec2, PathCounters&) const { return std::nullopt; }
+  static constexpr bool kLightDraws = false;
+  std::optional<ShadowQuery> direct(const Vertex&, const LightDraw&, PathCounters&) const { return std::nullopt; }
   std::optional<Scatter> scatter(const Vertex& v, float u_choice, Vec2 u_light, float u_lobe, Vec2 u,
                                  PathCounters& c) const {
     const float c_l = v.scene.lights.empty() ? 0.0f : c_light;

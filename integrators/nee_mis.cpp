@@ -18,8 +18,9 @@ struct NeeMisVariant {
     const float pdf_light = light_pdf_for_hit(scene, prev.ctx, light, on_light, dir);
     return Color(mis_weight(prev.pdf_bsdf, pdf_light, heuristic));
   }
-  std::optional<ShadowQuery> direct(const Vertex& v, float u_choice, Vec2 u_light, PathCounters& c) const {
-    return sample_direct(v, u_choice, u_light, /*mis_weighted=*/true, heuristic, c);
+  static constexpr bool kLightDraws = true;
+  std::optional<ShadowQuery> direct(const Vertex& v, const LightDraw& d, PathCounters& c) const {
+    return sample_direct(v, d, /*mis_weighted=*/true, heuristic, c);
   }
   std::optional<Scatter> scatter(const Vertex& v, float, Vec2, float u_lobe, Vec2 u, PathCounters&) const {
     return scatter_bsdf(v, u_lobe, u);

@@ -36,26 +36,93 @@ std::optional<Vertex> make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_d
   return std::make_optional<Vertex>(scene, hit, frame, ng, sp.bsdf, wo, LightSampleContext{hit.p, ng});
 }
 
-std::optional<ShadowQuery> sample_direct(const Vertex& v, float u_choice, Vec2 u_light, bool mis_weighted,
+void draw_lights(const Scene& scene, const Hit* hits, const int* lanes, int m, const VertexDims* dims,
+                 LightDraw* out) {
+  constexpr int kLanes = PathBatch::kMaxLanes;
+  m = std::min(m, kLanes);
+  if (m <= 0) return;
+  // Scratch written before it is read, left uninitialised (as arrays of these types, tens of kilobytes per call
+  // would be zeroed by their member initialisers).
+  Uninitialised<LightSampleContext, kLanes> ctx, group_ctx;
+  Uninitialised<Vec2, kLanes> group_u;
+  Uninitialised<LightChoice, kLanes> choice;
+  Uninitialised<LightSample, kLanes> samples;
+  float u_choice[kLanes];
+  for (int i = 0; i < m; ++i) {
+    const Hit& hit = hits[lanes[i]];
+    ctx[i] = {hit.p, hit.front ? hit.ng : -hit.ng};
+    u_choice[i] = dims[lanes[i]].choice;
+  }
+  scene.light_selector.sample_many(ctx.data(), u_choice, m, choice.data());
+  // Each light samples its receivers together: the lanes grouped by the light chosen (lane order kept within a
+  // light), their receivers and numbers gathered. `order` lists them light by light, from start[light].
+  const int n_lights = static_cast<int>(scene.lights.size());
+  int order[kLanes], start[kLanes + 1];
+  if (n_lights > kLanes) {  // many lights: one receiver at a time
+    for (int i = 0; i < m; ++i) {
+      LightDraw& d = out[lanes[i]];
+      d.choice = choice[i];
+      const std::optional<LightSample> ls =
+          choice[i].index >= 0 ? scene.lights[choice[i].index]->sample(ctx[i], dims[lanes[i]].light) : std::nullopt;
+      d.ok = ls.has_value();
+      if (d.ok) d.sample = *ls;
+    }
+    return;
+  }
+  if (n_lights == 1) {
+    start[0] = 0;
+    start[1] = 0;
+    for (int i = 0; i < m; ++i)
+      if (choice[i].index == 0) order[start[1]++] = i;
+  } else {  // counting sort by light
+    std::fill(start, start + n_lights + 1, 0);
+    for (int i = 0; i < m; ++i)
+      if (choice[i].index >= 0) ++start[choice[i].index + 1];
+    for (int j = 0; j < n_lights; ++j) start[j + 1] += start[j];
+    int next[kLanes];
+    std::copy(start, start + n_lights, next);
+    for (int i = 0; i < m; ++i)
+      if (choice[i].index >= 0) order[next[choice[i].index]++] = i;
+  }
+  for (int i = 0; i < m; ++i) {
+    out[lanes[i]].choice = choice[i];
+    out[lanes[i]].ok = false;
+  }
+  bool ok[kLanes];
+  for (int j = 0; j < n_lights; ++j) {
+    const int first = start[j], count = start[j + 1] - first;
+    if (count == 0) continue;
+    for (int g = 0; g < count; ++g) {
+      const int i = order[first + g];
+      group_ctx[g] = ctx[i];
+      group_u[g] = dims[lanes[i]].light;
+    }
+    scene.lights[j]->sample_many(group_ctx.data(), group_u.data(), count, samples.data(), ok);
+    for (int g = 0; g < count; ++g) {
+      LightDraw& d = out[lanes[order[first + g]]];
+      d.ok = ok[g];
+      if (ok[g]) d.sample = samples[g];
+    }
+  }
+}
+
+std::optional<ShadowQuery> sample_direct(const Vertex& v, const LightDraw& draw, bool mis_weighted,
                                         MisHeuristic heuristic, PathCounters& counters) {
-  const Scene& scene = v.scene;
-  const std::optional<LightChoice> choice = scene.light_selector.sample(v.ctx, u_choice);
-  if (!choice) return std::nullopt;
-  const Light& light = *scene.lights[choice->index];
-  const std::optional<LightSample> ls = light.sample(v.ctx, u_light);
-  if (!ls || !(ls->pdf > 0) || is_black(ls->le)) return std::nullopt;
+  if (draw.choice.index < 0 || !draw.ok) return std::nullopt;
+  const LightSample& ls = draw.sample;
+  if (!(ls.pdf > 0) || is_black(ls.le)) return std::nullopt;
   // Shading-normal rule: light arriving from below the geometric surface does not reflect (no light leaks).
-  if (dot(ls->wi, v.ng) <= 0) return std::nullopt;
-  const Vec3 wi = v.frame.to_local(ls->wi);
+  if (dot(ls.wi, v.ng) <= 0) return std::nullopt;
+  const Vec3 wi = v.frame.to_local(ls.wi);
   const Color f = v.bsdf.f(v.wo, wi);
   if (is_black(f)) return std::nullopt;
   ++counters.rays;
   ++counters.shadow_rays;
-  const float pdf_light = choice->pmf * ls->pdf;
+  const float pdf_light = draw.choice.pmf * ls.pdf;
   const float w = mis_weighted ? mis_weight(pdf_light, v.bsdf.pdf(v.wo, wi), heuristic) : 1.0f;
   return std::make_optional<ShadowQuery>(
-      std::isinf(ls->dist) ? spawn_ray(v.hit, ls->wi) : spawn_ray_to(v.hit, ls->p_light),
-      f * ls->le * (std::abs(wi.z) * w / pdf_light));
+      std::isinf(ls.dist) ? spawn_ray(v.hit, ls.wi) : spawn_ray_to(v.hit, ls.p_light),
+      f * ls.le * (std::abs(wi.z) * w / pdf_light));
 }
 
 float light_pdf_for_hit(const Scene& scene, const LightSampleContext& ctx, int light, const Hit* on_light, Vec3 dir) {

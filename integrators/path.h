@@ -2,15 +2,17 @@
 // vertices is the previous vertex's receiver context and the densities its direction was drawn with.
 // A variant supplies three hooks (see the variant files):
 //   Color emission_weight(const PathState& prev, const Scene&, int light, const Hit* on_light, Vec3 dir) const;
-//   std::optional<ShadowQuery> direct(const Vertex& v, float u_choice, Vec2 u_light, PathCounters& c) const;
+//   static constexpr bool kLightDraws;  // direct() uses the vertex's light draw (next-event estimation)
+//   std::optional<ShadowQuery> direct(const Vertex& v, const LightDraw& d, PathCounters& c) const;
 //                                                                   // NEE: the shadow ray and its value, or none
 //   std::optional<Scatter> scatter(const Vertex& v, float u_choice, Vec2 u_light, float u_lobe, Vec2 u_dir,
 //                                  PathCounters& c) const;
 // Sampler dimensions per vertex are consumed in a fixed order whatever the variant, so stratification lines up:
 // light choice (1D), light position (2D), BSDF/strategy choice (1D), direction (2D), Russian roulette (1D).
 // The paths of a PathBatch (up to 256 neighbouring pixels) advance in lockstep, one bounce of every live lane at a
-// time: closest hits, then shading of each lane (its next-event estimate is held as a ShadowQuery), then all of the
-// bounce's shadow rays in 16-ray Embree packets. Each lane has its own sampler and state, so its estimate is the one
+// time: closest hits, then the sampler dimensions and (next-event variants) the light choices and light samples of
+// all lanes side by side, then shading of each lane (its next-event estimate is held as a ShadowQuery), then all of
+// the bounce's shadow rays in 16-ray Embree packets. Each lane has its own sampler and state, so its estimate is the one
 // it would get alone (tests/app/test_end_to_end.cpp checks this bit for bit).
 #pragma once
 
@@ -66,10 +68,23 @@ struct ShadowQuery {
   Color value;  ///< f |cos| Le / (pmf pdf_light), times the MIS weight when asked (pdf_light: solid angle)
 };
 
-/// One next-event-estimation sample at v: light chosen by the scene's selector, its sample, the shadow ray to
-/// trace; nullopt when the sample contributes nothing whatever the visibility. MIS-weighted against BSDF sampling
-/// when mis_weighted.
-std::optional<ShadowQuery> sample_direct(const Vertex& v, float u_choice, Vec2 u_light, bool mis_weighted,
+/// Next-event estimation's first half at one vertex: the light the scene's selector chose and that light's sample.
+struct LightDraw {
+  LightSample sample;  ///< valid when ok
+  LightChoice choice;  ///< index -1: no light can contribute here
+  bool ok = false;     ///< the chosen light gave a sample
+};
+
+/// The light draws of a bounce's lanes[0..m) into out[lane], from their hits and their vertex dimensions (choice,
+/// light), each what one lane alone would draw: the receiver is the hit point with its geometric normal turned
+/// toward the arriving ray (make_vertex's ctx). Selection and sampling run for all lanes at once (vectorised where
+/// the light has a batch kernel).
+void draw_lights(const Scene& scene, const Hit* hits, const int* lanes, int m, const VertexDims* dims,
+                 LightDraw* out);
+
+/// One next-event-estimation sample at v from its light draw: the shadow ray to trace and its value; nullopt when
+/// the sample contributes nothing whatever the visibility. MIS-weighted against BSDF sampling when mis_weighted.
+std::optional<ShadowQuery> sample_direct(const Vertex& v, const LightDraw& draw, bool mis_weighted,
                                          MisHeuristic heuristic, PathCounters& counters);
 
 /// Density of light sampling in direction wi from ctx (solid angle): sum over every light whose solid angle
@@ -115,6 +130,7 @@ class PathIntegrator final : public Integrator {
     int owner[kLanes];  // lane of each shadow ray
     VertexDims dims[kLanes];
     int dim_lanes[kLanes];
+    Uninitialised<LightDraw, Variant::kLightDraws ? kLanes : 1> draws;  // each lane's written before it is read
     for (int bounce = 0;; ++bounce) {
       // Closest hits of every live lane (bounce rays one by one: 16-wide packets of them measured no faster).
       int live = 0;
@@ -137,6 +153,7 @@ class PathIntegrator final : public Integrator {
         for (int k = 0; k < n; ++k)
           if (alive[k] && found[k]) dim_lanes[n_dims++] = k;
       Sampler::get_vertex_batch(batch.samplers, dim_lanes, n_dims, dims);
+      if constexpr (Variant::kLightDraws) draw_lights(scene, hits, dim_lanes, n_dims, dims, draws.data());
 
       // Shade each live lane; its next-event estimate waits in `shadow`.
       int n_shadow = 0;
@@ -144,8 +161,8 @@ class PathIntegrator final : public Integrator {
         if (!alive[k]) continue;
         bool has_shadow = false;
         alive[k] = shade(scene, bounce, rays[k], found[k], hits[k], beta[k], prev[k], batch.radiance[k], dims[k],
-                         bounce == 0 && batch.aov ? &batch.aov[k] : nullptr, shadow[n_shadow], has_shadow,
-                         counters);
+                         draws[Variant::kLightDraws ? k : 0], bounce == 0 && batch.aov ? &batch.aov[k] : nullptr,
+                         shadow[n_shadow], has_shadow, counters);
         if (has_shadow) owner[n_shadow++] = k;
       }
 
@@ -169,8 +186,8 @@ class PathIntegrator final : public Integrator {
   // One vertex of one lane: emission, AOV, next-event sample (when has_shadow, `shadow` holds it, its value
   // already times beta), continuation (ray, beta, prev updated). Returns whether the path goes on.
   bool shade(const Scene& scene, int bounce, Ray& ray, bool found, const Hit& hit, Color& beta, PathState& prev,
-             Color& radiance, const VertexDims& u, AovSample* aov, ShadowQuery& shadow, bool& has_shadow,
-             PathCounters& counters) const {
+             Color& radiance, const VertexDims& u, const LightDraw& draw, AovSample* aov, ShadowQuery& shadow,
+             bool& has_shadow, PathCounters& counters) const {
     if (!found) {
       if (scene.environment >= 0) {
         const Color le = scene.lights[scene.environment]->le_escaped(ray.d);
@@ -194,12 +211,12 @@ class PathIntegrator final : public Integrator {
     }
     if (bounce >= max_depth_ || !can_scatter) return false;
 
-    // Dimensions (u, drawn for this vertex in li): light choice, light position, strategy/lobe choice, direction,
-    // roulette (fixed order).
+    // Dimensions (u, drawn for this vertex in li, as is the light draw): light choice, light position,
+    // strategy/lobe choice, direction, roulette (fixed order).
     const float u_choice = u.choice, u_lobe = u.lobe, u_rr = u.rr;
     const Vec2 u_light = u.light, u_dir = u.dir;
 
-    if (std::optional<ShadowQuery> q = variant_.direct(*v, u_choice, u_light, counters)) {
+    if (std::optional<ShadowQuery> q = variant_.direct(*v, draw, counters)) {
       shadow = {q->ray, beta * q->value};
       has_shadow = true;
     }

@@ -12,7 +12,8 @@ struct UniformVariant {
   UniformMeasure measure;
 
   Color emission_weight(const PathState&, const Scene&, int, const Hit*, Vec3) const { return Color(1); }
-  std::optional<ShadowQuery> direct(const Vertex&, float, Vec2, PathCounters&) const { return std::nullopt; }
+  static constexpr bool kLightDraws = false;
+  std::optional<ShadowQuery> direct(const Vertex&, const LightDraw&, PathCounters&) const { return std::nullopt; }
   std::optional<Scatter> scatter(const Vertex& v, float, Vec2, float, Vec2 u, PathCounters&) const {
     Vec3 wi;
     float pdf;

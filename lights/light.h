@@ -64,6 +64,15 @@ class Light {
   virtual ~Light() = default;
   /// Sample a direction toward the light from ctx.p; density per unit solid angle at ctx.p.
   virtual std::optional<LightSample> sample(const LightSampleContext& ctx, Vec2 u) const = 0;
+  /// sample() for n receivers (solid angle at each ctx[i]): out[i] where ok[i], ok[i] false where sample() gives
+  /// nullopt. The same numbers as sample(); lights with a batch kernel override it (sphere).
+  virtual void sample_many(const LightSampleContext* ctx, const Vec2* u, int n, LightSample* out, bool* ok) const {
+    for (int i = 0; i < n; ++i) {
+      const std::optional<LightSample> ls = sample(ctx[i], u[i]);
+      ok[i] = ls.has_value();
+      if (ok[i]) out[i] = *ls;
+    }
+  }
   /// Solid-angle density at ctx.p with which sample() would produce direction wi, arriving at `on_light`
   /// (the hit a BSDF ray made on this light). Environment: on_light is ignored.
   virtual float pdf(const LightSampleContext& ctx, Vec3 wi, const Hit& on_light) const = 0;

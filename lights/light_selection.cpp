@@ -1,6 +1,7 @@
 // Choosing one light per receiver. Importance follows the lecture: c_j = solid angle x luminance, zero when the
 // light is entirely below the horizon; pick j with sum_{l<j} c_l <= C u < sum_{l<=j} c_l by a linear search, so
 // the cost is O(number of lights) per vertex and nothing is allocated.
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -109,6 +110,30 @@ std::optional<LightChoice> LightSelector::sample(const LightSampleContext& ctx, 
   }
   // Only when total * u rounded up to total: the last light with positive importance owns the top of [0, C).
   return LightChoice{last_positive, last_c / total};
+}
+
+void LightSelector::sample_many(const LightSampleContext* ctx, const float* u, int n, LightChoice* out) const {
+  if (strategy_ == LightSelection::Importance && lights_.size() == 1 && spheres_.index.size() == 1) {
+    // sample()'s one-light case: the light when its importance is positive; sphere_importance is what a sphere's
+    // importance() returns, and it has no branches, so this loop vectorises.
+    // (The receivers in columns, a chunk at a time: the loop does not vectorise over the structs themselves.)
+    const SphereEmitter s{{spheres_.x[0], spheres_.y[0], spheres_.z[0]}, spheres_.radius[0], spheres_.luminance[0]};
+    constexpr int kChunk = 64;
+    float px[kChunk], py[kChunk], pz[kChunk], nx[kChunk], ny[kChunk], nz[kChunk];
+    int positive[kChunk];
+    for (int begin = 0; begin < n; begin += kChunk) {
+      const int m = std::min(kChunk, n - begin);
+      for (int k = 0; k < m; ++k) {
+        const LightSampleContext& c = ctx[begin + k];
+        px[k] = c.p.x, py[k] = c.p.y, pz[k] = c.p.z, nx[k] = c.n.x, ny[k] = c.n.y, nz[k] = c.n.z;
+      }
+      for (int k = 0; k < m; ++k)
+        positive[k] = clean(sphere_importance(s, {{px[k], py[k], pz[k]}, {nx[k], ny[k], nz[k]}})) > 0;
+      for (int k = 0; k < m; ++k) out[begin + k] = positive[k] ? LightChoice{0, 1.0f} : LightChoice{};
+    }
+    return;
+  }
+  for (int i = 0; i < n; ++i) out[i] = sample(ctx[i], u[i]).value_or(LightChoice{});
 }
 
 float LightSelector::pmf(const LightSampleContext& ctx, int index) const {

@@ -27,6 +27,9 @@ class LightSelector {
 
   /// Choose a light for the receiver; nullopt when no light can contribute.
   std::optional<LightChoice> sample(const LightSampleContext& ctx, float u) const;
+  /// sample() for n receivers: out[i] is receiver i's choice, index -1 where sample() gives none. One sphere light
+  /// (cornell-sphere) is tested for every receiver in one vectorised loop; anything else receiver by receiver.
+  void sample_many(const LightSampleContext* ctx, const float* u, int n, LightChoice* out) const;
   /// Probability that sample() picks light `index` at this receiver (recomputed exactly as sample() uses it).
   float pmf(const LightSampleContext& ctx, int index) const;
   size_t size() const { return lights_.size(); }

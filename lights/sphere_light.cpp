@@ -2,9 +2,11 @@
 // subtends (lecture: z_min = sqrt(1 - r^2/|c|^2), p = 1/(2 pi (1 - z_min))); from inside or on the surface the
 // sphere's outside is not visible, so nothing arrives, but sampling stays defined: uniform by area, converted to
 // solid angle.
-#include "core/frame.h"
+#include <algorithm>
+
+#include "core/simd.h"
 #include "core/warp.h"
-#include "lights/light.h"
+#include "lights/sphere_cap.h"
 
 namespace lumis {
 namespace {
@@ -20,22 +22,42 @@ class SphereLight final : public Light {
     const float d2 = length_squared(to_c);
     if (!(r_ > 0)) return std::nullopt;
     if (d2 <= r_ * r_) return sample_area(ctx, u);
-    const float d = std::sqrt(d2), inv_d = 1 / d;
-    const float one_minus_cos_max = cap_one_minus_cos(d2);
-    // Lecture's cap map, written with 1 - cos(theta) so that tiny caps keep their precision.
-    const float one_minus_z = one_minus_cos_max * u.y;
-    const float z = 1 - one_minus_z;
-    const float sin_theta = safe_sqrt(one_minus_z * (2 - one_minus_z));
-    const float phi = 2 * kPi * u.x - kPi;
-    // Unit up to rounding: z^2 + sin_theta^2 = 1 and the frame is orthonormal.
-    const Frame frame = Frame::from_normal(to_c * inv_d);
-    const Vec3 wi = frame.to_world({std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, z});
-    // Nearest intersection of the ray with the sphere; the discriminant is >= 0 up to rounding inside the cap.
-    const float t = std::max(0.0f, d * z - safe_sqrt(r_ * r_ - d2 * sin_theta * sin_theta));
-    const Vec3 p_light = ctx.p + wi * t;
-    const Vec3 n_light = (p_light - c_) * inv_r_;  // p_light is on the sphere: unit up to rounding, no square root
-    return std::make_optional<LightSample>(dot(n_light, -wi) > 0 ? radiance_ : Color{}, wi, t,
-                                           1 / (2 * kPi * one_minus_cos_max), p_light, n_light);
+    const sphere_cap::Setup s = sphere_cap::setup(r_ * r_, d2, u);
+    const sphere_cap::Point q = sphere_cap::finish(c_, r_, inv_r_, ctx.p, to_c, d2, s);
+    return std::make_optional<LightSample>(dot(q.n, -q.wi) > 0 ? radiance_ : Color{}, q.wi, q.t,
+                                           1 / (2 * kPi * s.one_minus_cos_max), q.p, q.n);
+  }
+
+  /// sample() for n receivers: the cap samples side by side (lights/sphere_light_batch.cpp), the same numbers.
+  void sample_many(const LightSampleContext* ctx, const Vec2* u, int n, LightSample* out, bool* ok) const override {
+    if (!(r_ > 0)) {
+      std::fill(ok, ok + n, false);
+      return;
+    }
+    const int level = simd_level();
+    sphere_cap::Batch b;
+    b.c = c_, b.r = r_, b.inv_r = inv_r_;
+    for (int begin = 0; begin < n; begin += sphere_cap::Batch::kChunk) {
+      const int m = std::min(sphere_cap::Batch::kChunk, n - begin);
+      for (int k = 0; k < m; ++k) {
+        const Vec3 p = ctx[begin + k].p;
+        b.px[k] = p.x, b.py[k] = p.y, b.pz[k] = p.z, b.ux[k] = u[begin + k].x, b.uy[k] = u[begin + k].y;
+      }
+      sphere_cap::run(b, m, level);
+      for (int k = 0; k < m; ++k) {
+        const int i = begin + k;
+        if (length_squared(c_ - ctx[i].p) <= r_ * r_) {  // inside: by area, one at a time
+          const std::optional<LightSample> ls = sample_area(ctx[i], u[i]);
+          ok[i] = ls.has_value();
+          if (ok[i]) out[i] = *ls;
+          continue;
+        }
+        ok[i] = true;
+        out[i] = LightSample(b.emits[k] ? radiance_ : Color{}, {b.wx[k], b.wy[k], b.wz[k]}, b.t[k],
+                             1 / (2 * kPi * b.one_minus_cos_max[k]), {b.lx[k], b.ly[k], b.lz[k]},
+                             {b.nx[k], b.ny[k], b.nz[k]});
+      }
+    }
   }
 
   /// Solid angle at ctx.p, the same density as sample() from this receiver; on_light is a hit on the sphere.
