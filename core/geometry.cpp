@@ -198,7 +198,7 @@ void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, 
   // with the hit point's own (an axis-aligned plane through the origin still needs an offset).
   hit.p_error = Vec3(max_component(max(abs(p0), max(abs(p1), abs(p2)))) * kErrorScale);
   hit.ng = ng;
-  hit.ns = hit.ng;
+  hit.ns = ng;  // from the register: read back from hit.ng, it waited on a failed store forward
   hit.tangent = {};
   hit.uv[0] = hit.uv[1] = {};
   hit.color = {1, 1, 1, 1};

@@ -72,8 +72,10 @@ void draw_lights(const Scene& scene, const Hit* hits, const int* lanes, int m, c
   if (n_lights == 1) {
     start[0] = 0;
     start[1] = 0;
-    for (int i = 0; i < m; ++i)
-      if (choice[i].index == 0) order[start[1]++] = i;
+    for (int i = 0; i < m; ++i) {  // without a branch, as the path loop lists its lanes
+      order[start[1]] = i;
+      start[1] += choice[i].index == 0;
+    }
   } else {  // counting sort by light
     std::fill(start, start + n_lights + 1, 0);
     for (int i = 0; i < m; ++i)

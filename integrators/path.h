@@ -129,12 +129,15 @@ class PathIntegrator final : public Integrator {
     bool occluded[kLanes];
     int owner[kLanes];  // lane of each shadow ray
     VertexDims dims[kLanes];
-    int dim_lanes[kLanes];
+    int dim_lanes[kLanes], live_lanes[kLanes];
     Uninitialised<LightDraw, Variant::kLightDraws ? kLanes : 1> draws;  // each lane's written before it is read
     for (int bounce = 0;; ++bounce) {
       // Closest hits of every live lane (bounce rays one by one: 16-wide packets of them measured no faster).
       int live = 0;
-      for (int k = 0; k < n; ++k) live += alive[k];
+      for (int k = 0; k < n; ++k) {  // the live lanes listed without a branch (which paths ended is unpredictable)
+        live_lanes[live] = k;
+        live += alive[k];
+      }
       if (live == 0) break;
       counters.rays += live;
       if (bounce == 0 && batch.primary) {
@@ -150,20 +153,23 @@ class PathIntegrator final : public Integrator {
       // scatter ends its path, so the numbers it drew go unused, as they would one lane at a time).
       int n_dims = 0;
       if (bounce < max_depth_)
-        for (int k = 0; k < n; ++k)
-          if (alive[k] && found[k]) dim_lanes[n_dims++] = k;
+        for (int k = 0; k < n; ++k) {  // without a branch: which lanes go on is unpredictable
+          dim_lanes[n_dims] = k;
+          n_dims += alive[k] & found[k];
+        }
       Sampler::get_vertex_batch(batch.samplers, dim_lanes, n_dims, dims);
       if constexpr (Variant::kLightDraws) draw_lights(scene, hits, dim_lanes, n_dims, dims, draws.data());
 
       // Shade each live lane; its next-event estimate waits in `shadow`.
       int n_shadow = 0;
-      for (int k = 0; k < n; ++k) {
-        if (!alive[k]) continue;
+      for (int i = 0; i < live; ++i) {
+        const int k = live_lanes[i];
         bool has_shadow = false;
         alive[k] = shade(scene, bounce, rays[k], found[k], hits[k], beta[k], prev[k], batch.radiance[k], dims[k],
                          draws[Variant::kLightDraws ? k : 0], bounce == 0 && batch.aov ? &batch.aov[k] : nullptr,
                          shadow[n_shadow], has_shadow, counters);
-        if (has_shadow) owner[n_shadow++] = k;
+        owner[n_shadow] = k;
+        n_shadow += has_shadow;
       }
 
       // Shadow rays of this bounce, in packets of 16 (the live lanes' rays are packed together, so every packet
