@@ -12,8 +12,8 @@
 // The paths of a PathBatch (up to 256 neighbouring pixels) advance in lockstep, one bounce of every live lane at a
 // time: closest hits, then the sampler dimensions and (next-event variants) the light choices and light samples of
 // all lanes side by side, then shading of each lane (its next-event estimate is held as a ShadowQuery), then all of
-// the bounce's shadow rays in 16-ray Embree packets. Each lane has its own sampler and state, so its estimate is the one
-// it would get alone (tests/app/test_end_to_end.cpp checks this bit for bit).
+// the bounce's shadow rays in 16-ray Embree packets. Each lane has its own sampler and state, so its estimate is the
+// one it would get alone (tests/app/test_end_to_end.cpp checks this bit for bit).
 #pragma once
 
 #include <optional>
