@@ -1,0 +1,93 @@
+// draw_lights (integrators/path.cpp), the light choices and light samples of a bounce's lanes drawn together,
+// against the selector and each light drawing for one receiver at a time, bit for bit: one sphere light (the
+// vectorised paths), mixed lights grouped by the light chosen, and more lights than a batch has lanes (one receiver
+// at a time), with lanes listed out of order and some lanes left out.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <string>
+#include <vector>
+
+#include "core/rng.h"
+#include "integrators/path.h"
+
+namespace lumis {
+namespace {
+
+bool same(float a, float b) { return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b); }
+bool same(Vec3 a, Vec3 b) { return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z); }
+
+// expect_none: the importance strategy, which chooses no light for a receiver with every light below its horizon.
+void expect_draws_match(Scene& scene, const std::string& name, bool expect_none) {
+  scene.finalize();
+  constexpr int n = PathBatch::kMaxLanes;
+  Pcg32 rng(5, 9);
+  std::vector<Hit> hits(n);
+  std::vector<VertexDims> dims(n);
+  for (int k = 0; k < n; ++k) {
+    hits[k].p = {4 * rng.next_float() - 2, 3 * rng.next_float() - 0.5f, 4 * rng.next_float() - 2};
+    hits[k].ng = normalize(Vec3{rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f});
+    hits[k].front = rng.next_float() < 0.5f;
+    dims[k] = {rng.next_float(), {rng.next_float(), rng.next_float()}, 0, {0, 0}, 0};
+  }
+  // Every third lane left out, the rest listed backwards.
+  std::vector<int> lanes;
+  for (int k = n - 1; k >= 0; --k)
+    if (k % 3 != 1) lanes.push_back(k);
+  std::vector<LightDraw> out(n);
+  draw_lights(scene, hits.data(), lanes.data(), static_cast<int>(lanes.size()), dims.data(), out.data());
+  int drawn = 0, none = 0;
+  for (const int k : lanes) {
+    const std::string at = name + " lane " + std::to_string(k);
+    const LightSampleContext ctx{hits[k].p, hits[k].front ? hits[k].ng : -hits[k].ng};
+    const LightChoice c = scene.light_selector.sample(ctx, dims[k].choice).value_or(LightChoice{});
+    ASSERT_EQ(out[k].choice.index, c.index) << at;
+    ASSERT_TRUE(same(out[k].choice.pmf, c.pmf)) << at;
+    if (c.index < 0) {
+      ++none;
+      continue;
+    }
+    const std::optional<LightSample> ls = scene.lights[c.index]->sample(ctx, dims[k].light);
+    ASSERT_EQ(out[k].ok, ls.has_value()) << at;
+    if (!ls) continue;
+    ++drawn;
+    const LightSample& d = out[k].sample;
+    ASSERT_TRUE(same(d.wi, ls->wi) && same(d.dist, ls->dist) && same(d.pdf, ls->pdf) && same(d.p_light, ls->p_light) &&
+                same(d.n_light, ls->n_light) && same(d.le, ls->le))
+        << at;
+  }
+  EXPECT_GT(drawn, 60) << name;  // of 171 receivers, about half face a light
+  if (expect_none) {
+    EXPECT_GT(none, 0) << name << ": some receivers have every light below the horizon";
+  }
+}
+
+TEST(DrawLights, OneSphereEqualsOneReceiverAtATime) {
+  Scene scene;
+  scene.lights.push_back(make_sphere_light({0, 1.7f, 0}, 0.2f, {25, 25, 25}));
+  expect_draws_match(scene, "one sphere", true);
+}
+
+TEST(DrawLights, MixedLightsEqualOneReceiverAtATime) {
+  for (LightSelection strategy : {LightSelection::Importance, LightSelection::Power, LightSelection::Uniform}) {
+    Scene scene;
+    scene.lights.push_back(make_sphere_light({0, 1.7f, 0}, 0.2f, {25, 25, 25}));
+    scene.lights.push_back(make_quad_light({-1, 2.5f, -1}, {2, 0, 0}, {0, 0, 2}, {5, 5, 5}));
+    scene.lights.push_back(make_sphere_light({1.5f, 0.5f, 0.5f}, 0.1f, {40, 10, 10}));
+    scene.settings.light_selection = strategy;
+    expect_draws_match(scene, light_selection_name(strategy), strategy == LightSelection::Importance);
+  }
+}
+
+TEST(DrawLights, MoreLightsThanLanesEqualOneReceiverAtATime) {
+  Scene scene;
+  Pcg32 rng(2, 4);
+  for (int i = 0; i < PathBatch::kMaxLanes + 44; ++i)
+    scene.lights.push_back(make_sphere_light({6 * rng.next_float() - 3, 2 + rng.next_float(), 6 * rng.next_float() - 3},
+                                             0.05f, {1, 1, 1}));
+  expect_draws_match(scene, "many", false);
+}
+
+}  // namespace
+}  // namespace lumis
