@@ -17,11 +17,8 @@ std::optional<Vertex> make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_d
   if (hit.material < 0) return std::nullopt;
   ShadingPoint sp = scene.materials[hit.material]->shade(hit);
   Frame frame = sp.frame;
-  Vec3 ng = hit.ng;
-  if (!hit.front) {  // two-sided shading: turn the surface toward the arriving ray
-    ng = -ng;
-    frame = Frame(frame.s, -frame.t, -frame.n);
-  }
+  const Vec3 ng = facing_ng(hit);
+  if (!hit.front) frame = Frame(frame.s, -frame.t, -frame.n);  // two-sided shading: the surface faces the ray
   const Vec3 wo_world = -normalize(ray_dir);
   Vec3 wo = frame.to_local(wo_world);
   // Shading-normal rule: when the shading normal puts the viewer below the surface although the geometry faces
@@ -50,7 +47,7 @@ void draw_lights(const Scene& scene, const Hit* hits, const int* lanes, int m, c
   float u_choice[kLanes];
   for (int i = 0; i < m; ++i) {
     const Hit& hit = hits[lanes[i]];
-    ctx[i] = {hit.p, hit.front ? hit.ng : -hit.ng};
+    ctx[i] = {hit.p, facing_ng(hit)};
     u_choice[i] = dims[lanes[i]].choice;
   }
   scene.light_selector.sample_many(ctx.data(), u_choice, m, choice.data());

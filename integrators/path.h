@@ -68,6 +68,10 @@ struct ShadowQuery {
   Color value;  ///< f |cos| Le / (pmf pdf_light), times the MIS weight when asked (pdf_light: solid angle)
 };
 
+/// The geometric normal of a hit turned toward the arriving ray (two-sided shading): Vertex::ng, and with the hit
+/// point the receiver for light sampling (Vertex::ctx), whether the light is drawn in make_vertex or draw_lights.
+inline Vec3 facing_ng(const Hit& hit) { return hit.front ? hit.ng : -hit.ng; }
+
 /// Next-event estimation's first half at one vertex: the light the scene's selector chose and that light's sample.
 struct LightDraw {
   LightSample sample;  ///< valid when ok
@@ -76,9 +80,8 @@ struct LightDraw {
 };
 
 /// The light draws of a bounce's lanes[0..m) into out[lane], from their hits and their vertex dimensions (choice,
-/// light), each what one lane alone would draw: the receiver is the hit point with its geometric normal turned
-/// toward the arriving ray (make_vertex's ctx). Selection and sampling run for all lanes at once (vectorised where
-/// the light has a batch kernel).
+/// light), each what one lane alone would draw: the receiver is make_vertex's ctx, {hit.p, facing_ng(hit)}.
+/// Selection and sampling run for all lanes at once (vectorised where the light has a batch kernel).
 void draw_lights(const Scene& scene, const Hit* hits, const int* lanes, int m, const VertexDims* dims,
                  LightDraw* out);
 

@@ -3,6 +3,7 @@
 // arithmetic in the same order and give the same numbers bit for bit. The batch kernel's header is here too.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/frame.h"

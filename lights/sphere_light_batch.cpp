@@ -3,8 +3,6 @@
 // only exactly rounded operations (+, -, *, /, sqrt, min, max, conversions, compares), and this file and
 // sphere_light.cpp are compiled without floating-point contraction (no fused multiply-add, which AVX-512 would
 // otherwise allow), so every kernel gives SphereLight::sample's numbers bit for bit (SphereLightBatch tests).
-#include <algorithm>
-
 #include "core/simd.h"
 #include "lights/sphere_cap.h"
 
