@@ -7,76 +7,13 @@
 // sampling succeed from here?" with any u and reproduce the choice in its pdf.
 #include <cmath>
 
+#include "core/spherical_triangle.h"
 #include "core/warp.h"
 
 namespace lumis {
 namespace {
 
-struct D3 {
-  double x = 0, y = 0, z = 0;
-};
-D3 to_d(Vec3 v) { return {v.x, v.y, v.z}; }
-Vec3 to_f(D3 v) { return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)}; }
-D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-D3 operator*(D3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double ddot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-D3 dcross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double dlen(D3 a) { return std::sqrt(ddot(a, a)); }
-D3 dnormalize(D3 a) {
-  const double l = dlen(a);
-  return l > 0 ? a * (1.0 / l) : D3{};
-}
-double dclamp(double v, double lo, double hi) { return std::min(std::max(v, lo), hi); }
-constexpr double kDPi = 3.14159265358979323846;
-
-// Solid angles below this are left to area sampling. In double the angle-sum cancellation costs ~1e-16 / omega
-// relative, harmless down to 1e-10 sr; the limit is the float result direction (~6e-8 rad): at 1e-6 sr the polygon
-// spans ~1e-3 rad and a float direction can miss it by 1e-4 of its width. Below that, the polygon is so small that
-// the area-to-solid-angle Jacobian is nearly constant over it and area sampling is practically as good.
-constexpr double kMinSolidAngle = 1e-6;
-// Near 2 pi the receiver lies almost in the polygon's plane above its interior: every spherical angle tends to pi
-// and Arvo's q divides by sin(alpha) -> 0, so leave that case to area sampling as well.
-constexpr double kMaxSolidAngle = 2 * kDPi - 1e-3;
-
-// Van Oosterom & Strackee on unit vectors: tan(omega/2) = |a.(b x c)| / (1 + a.b + b.c + c.a).
-double unit_triangle_solid_angle(D3 a, D3 b, D3 c) {
-  const double num = std::abs(ddot(a, dcross(b, c)));
-  const double den = 1 + ddot(a, b) + ddot(b, c) + ddot(c, a);
-  return 2 * std::atan2(num, den);
-}
-
-// Cosine and sine of the interior angle of the spherical triangle at unit vertex a, between the great arcs toward
-// b and toward c (the angle between the normals of the two arcs' planes; in [0, pi], so the sine is >= 0).
-struct CosSin {
-  double cos, sin;
-};
-CosSin vertex_angle(D3 a, D3 b, D3 c) {
-  const D3 nb = dcross(a, b), nc = dcross(a, c);
-  const double inv = 1 / std::sqrt(ddot(nb, nb) * ddot(nc, nc));
-  if (!std::isfinite(inv)) return {1, 0};
-  return {dclamp(ddot(nb, nc) * inv, -1, 1), dclamp(dlen(dcross(nb, nc)) * inv, 0, 1)};
-}
-
-struct UnitTriangle {
-  D3 a, b, c;
-  double area = 0;
-  bool ok = false;
-};
-
-UnitTriangle make_unit_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
-  const D3 dp = to_d(p);
-  const D3 da = to_d(a) - dp, db = to_d(b) - dp, dc = to_d(c) - dp;
-  UnitTriangle t;
-  const double la = dlen(da), lb = dlen(db), lc = dlen(dc);
-  if (!(la > 0 && lb > 0 && lc > 0) || !std::isfinite(la + lb + lc)) return t;
-  t.a = da * (1 / la);
-  t.b = db * (1 / lb);
-  t.c = dc * (1 / lc);
-  t.area = unit_triangle_solid_angle(t.a, t.b, t.c);
-  t.ok = t.area >= kMinSolidAngle && t.area <= kMaxSolidAngle;
-  return t;
-}
+using namespace sph_tri;  // D3 and its operations, the solid-angle limits, the shared triangle steps
 
 // Urena et al. 2013, section 3: the rectangle in a frame with x, y along its edges and the receiver at the origin
 // on the negative-z side (z0 < 0).
@@ -132,40 +69,19 @@ float triangle_solid_angle(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
 }
 
 std::optional<SphericalSample> sample_spherical_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, Vec2 u) {
-  const UnitTriangle t = make_unit_triangle(p, a, b, c);
-  if (!t.ok) return std::nullopt;
-  const D3 A = t.a, B = t.b, C = t.c;
-  // alpha's cosine and sine from the arcs' normals, and sin/cos(area_sub - alpha) by the angle-difference
-  // identities: one sincos instead of an acos and two (the same values up to rounding).
-  const CosSin alpha = vertex_angle(A, B, C);
-  const double cos_c = ddot(A, B);  // cosine of the arc opposite C
-  // Arvo: choose the sub-triangle (A, B, C') of area u.x * area; C' lies on arc AC at cos(arc AC') = q.
-  const double area_sub = u.x * t.area;
-  const double sin_sub = std::sin(area_sub), cos_sub = std::cos(area_sub);
-  const double s = sin_sub * alpha.cos - cos_sub * alpha.sin;   // sin(area_sub - alpha)
-  const double cs = cos_sub * alpha.cos + sin_sub * alpha.sin;  // cos(area_sub - alpha)
-  const double uu = cs - alpha.cos;
-  const double vv = s + alpha.sin * cos_c;
-  double q = ((vv * cs - uu * s) * alpha.cos - vv) / ((vv * s + uu * cs) * alpha.sin);
-  if (!std::isfinite(q)) q = 1;  // only at area_sub -> 0, where C' = A
-  q = dclamp(q, -1, 1);
-  const D3 c_perp = dnormalize(C - A * ddot(C, A));
-  const D3 c_sub = A * q + c_perp * std::sqrt(std::max(0.0, 1 - q * q));
-  // Then uniform in the sub-triangle along the arc from B toward C', by 1 - cos of the arc length.
-  const double z = 1 - u.y * (1 - ddot(c_sub, B));
-  const D3 b_perp = dnormalize(c_sub - B * ddot(c_sub, B));
-  const D3 w = dnormalize(B * z + b_perp * std::sqrt(std::max(0.0, 1 - z * z)));
-  return SphericalSample{to_f(w), static_cast<float>(1 / t.area)};
+  const sph_tri::Sample r = sph_tri::sample(p, a, b, c, u);  // core/spherical_triangle.h, shared with the batch
+  if (!r.ok) return std::nullopt;
+  return SphericalSample{r.w, r.pdf};
 }
 
 std::optional<float> spherical_triangle_pdf(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
-  const UnitTriangle t = make_unit_triangle(p, a, b, c);
+  const UnitTriangle t = unit_triangle(p, a, b, c);
   if (!t.ok) return std::nullopt;
   return static_cast<float>(1 / t.area);
 }
 
 Vec2 invert_spherical_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, Vec3 w) {
-  const UnitTriangle t = make_unit_triangle(p, a, b, c);
+  const UnitTriangle t = unit_triangle(p, a, b, c);
   if (!(t.area > 0)) return {0, 0};
   const D3 A = t.a, B = t.b, C = t.c, W = dnormalize(to_d(w));
   // C' is where the great circle through B and w meets arc AC; pick the antipode lying between A and C.

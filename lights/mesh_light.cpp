@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "core/distribution.h"
+#include "core/simd.h"
+#include "core/spherical_triangle_batch.h"
 #include "core/warp.h"
 #include "lights/light.h"
 
@@ -49,41 +51,49 @@ class MeshLight final : public Light {
   /// Solid angle at ctx.p: pmf(triangle) x the triangle's solid-angle density.
   std::optional<LightSample> sample(const LightSampleContext& ctx, Vec2 u) const override {
     if (triangles_.size() == 0) return std::nullopt;
-    float u_tri = 0;
-    const size_t t = triangles_.sample_discrete(u.x, nullptr, &u_tri);
-    if (!emits_toward(t, ctx.p)) return std::nullopt;
-    const Vec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2), n = normals_[t];
-    const Vec2 v{std::min(u_tri, kOneMinusEpsilon), u.y};
-    Vec3 wi, p_light, bary;
-    float dist, pdf;
-    // Spherical sampling fails for reasons of geometry only, never of u, so the fallback is a function of
-    // (receiver, triangle) that pdf() reproduces.
-    const auto ss = method_ == TriangleSampling::SphericalTriangle ? sample_spherical_triangle(ctx.p, a, b, c, v)
-                                                                   : std::nullopt;
-    if (ss) {
-      const float denom = dot(ss->w, n);
-      if (denom == 0) return std::nullopt;
-      wi = ss->w;
-      dist = dot(a - ctx.p, n) / denom;
-      if (!(dist > 0)) return std::nullopt;
-      p_light = ctx.p + wi * dist;
-      pdf = ss->pdf;
-      if (texture_) bary = barycentrics(t, p_light);  // only a texture's lookup needs them
-    } else {
-      const Vec2 b01 = sample_uniform_triangle(v);
-      bary = {b01.x, b01.y, 1 - b01.x - b01.y};
-      p_light = a * bary.x + b * bary.y + c * bary.z;
-      const Vec3 to_p = p_light - ctx.p;
-      const float dist2 = length_squared(to_p);
-      dist = std::sqrt(dist2);
-      if (!(dist > 0)) return std::nullopt;
-      wi = to_p / dist;
-      const float cos_l = std::abs(dot(n, wi));
-      if (!(cos_l > 0)) return std::nullopt;
-      pdf = dist2 / (cos_l * area_[t]);
+    const Choice ch = choose(ctx, u);
+    if (!ch.emits) return std::nullopt;
+    const std::optional<SphericalSample> ss =
+        method_ == TriangleSampling::SphericalTriangle
+            ? sample_spherical_triangle(ctx.p, vertex(ch.t, 0), vertex(ch.t, 1), vertex(ch.t, 2), ch.v)
+            : std::nullopt;
+    return finish(ctx, ch, ss);
+  }
+
+  /// sample() for n receivers (solid angle at each): the spherical triangles side by side
+  /// (core/spherical_triangle_batch.cpp), the same numbers.
+  void sample_many(const LightSampleContext* ctx, const Vec2* u, int n, LightSample* out, bool* ok) const override {
+    if (method_ != TriangleSampling::SphericalTriangle || triangles_.size() == 0) {
+      Light::sample_many(ctx, u, n, out, ok);
+      return;
     }
-    pdf *= triangles_.pmf(t);
-    return std::make_optional<LightSample>(radiance_at(t, bary), wi, dist, pdf, p_light, n);
+    const int level = simd_level();
+    sph_tri::Batch b;
+    Choice ch[sph_tri::Batch::kChunk];
+    for (int begin = 0; begin < n; begin += sph_tri::Batch::kChunk) {
+      const int m = std::min(sph_tri::Batch::kChunk, n - begin);
+      for (int k = 0; k < m; ++k) {
+        const Vec3 p = ctx[begin + k].p;
+        ch[k] = choose(ctx[begin + k], u[begin + k]);
+        const Vec3 a = vertex(ch[k].t, 0), bb = vertex(ch[k].t, 1), c = vertex(ch[k].t, 2);
+        b.px[k] = p.x, b.py[k] = p.y, b.pz[k] = p.z;
+        b.ax[k] = a.x, b.ay[k] = a.y, b.az[k] = a.z;
+        b.bx[k] = bb.x, b.by[k] = bb.y, b.bz[k] = bb.z;
+        b.cx[k] = c.x, b.cy[k] = c.y, b.cz[k] = c.z;
+        b.ux[k] = ch[k].v.x, b.uy[k] = ch[k].v.y;
+      }
+      sph_tri::run(b, m, level);
+      for (int k = 0; k < m; ++k) {
+        const std::optional<LightSample> ls =
+            ch[k].emits ? finish(ctx[begin + k], ch[k],
+                                 b.ok[k] ? std::make_optional<SphericalSample>(Vec3{b.wx[k], b.wy[k], b.wz[k]},
+                                                                               b.pdf[k])
+                                         : std::nullopt)
+                        : std::nullopt;
+        ok[begin + k] = ls.has_value();
+        if (ls) out[begin + k] = *ls;
+      }
+    }
   }
 
   /// Solid angle at ctx.p for the triangle on_light.prim_id (a direction crossing several triangles has one such
@@ -127,6 +137,53 @@ class MeshLight final : public Light {
   std::string name() const override { return "mesh"; }
 
  private:
+  /// The triangle a sample draws (by power, u.x reused within its bin), its 2D number, and whether it emits
+  /// toward the receiver at all.
+  struct Choice {
+    size_t t;
+    Vec2 v;
+    bool emits;
+  };
+  Choice choose(const LightSampleContext& ctx, Vec2 u) const {
+    float u_tri = 0;
+    const size_t t = triangles_.sample_discrete(u.x, nullptr, &u_tri);
+    return {t, {std::min(u_tri, kOneMinusEpsilon), u.y}, emits_toward(t, ctx.p)};
+  }
+  /// The sample toward triangle ch.t from the spherical sample ss (solid angle) or, where that failed (nullopt),
+  /// by area converted to solid angle.
+  std::optional<LightSample> finish(const LightSampleContext& ctx, const Choice& ch,
+                                    const std::optional<SphericalSample>& ss) const {
+    const size_t t = ch.t;
+    const Vec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2), n = normals_[t];
+    Vec3 wi, p_light, bary;
+    float dist, pdf;
+    // Spherical sampling fails for reasons of geometry only, never of u, so the fallback is a function of
+    // (receiver, triangle) that pdf() reproduces.
+    if (ss) {
+      const float denom = dot(ss->w, n);
+      if (denom == 0) return std::nullopt;
+      wi = ss->w;
+      dist = dot(a - ctx.p, n) / denom;
+      if (!(dist > 0)) return std::nullopt;
+      p_light = ctx.p + wi * dist;
+      pdf = ss->pdf;
+      if (texture_) bary = barycentrics(t, p_light);  // only a texture's lookup needs them
+    } else {
+      const Vec2 b01 = sample_uniform_triangle(ch.v);
+      bary = {b01.x, b01.y, 1 - b01.x - b01.y};
+      p_light = a * bary.x + b * bary.y + c * bary.z;
+      const Vec3 to_p = p_light - ctx.p;
+      const float dist2 = length_squared(to_p);
+      dist = std::sqrt(dist2);
+      if (!(dist > 0)) return std::nullopt;
+      wi = to_p / dist;
+      const float cos_l = std::abs(dot(n, wi));
+      if (!(cos_l > 0)) return std::nullopt;
+      pdf = dist2 / (cos_l * area_[t]);
+    }
+    pdf *= triangles_.pmf(t);
+    return std::make_optional<LightSample>(radiance_at(t, bary), wi, dist, pdf, p_light, n);
+  }
   Vec3 vertex(size_t t, int k) const { return positions_[indices_[3 * t + k]]; }
   bool emits_toward(size_t t, Vec3 p) const {
     if (!(area_[t] > 0)) return false;

@@ -1,7 +1,7 @@
 // draw_lights (integrators/path.cpp), the light choices and light samples of a bounce's lanes drawn together,
 // against the selector and each light drawing for one receiver at a time, bit for bit: one sphere light (the
-// vectorised paths), mixed lights grouped by the light chosen, and more lights than a batch has lanes (one receiver
-// at a time), with lanes listed out of order and some lanes left out.
+// vectorised paths), mixed lights (spheres, a quad, a mesh) grouped by the light chosen, and more lights than a
+// batch has lanes (one receiver at a time), with lanes listed out of order and some lanes left out.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -75,6 +75,10 @@ TEST(DrawLights, MixedLightsEqualOneReceiverAtATime) {
     scene.lights.push_back(make_sphere_light({0, 1.7f, 0}, 0.2f, {25, 25, 25}));
     scene.lights.push_back(make_quad_light({-1, 2.5f, -1}, {2, 0, 0}, {0, 0, 2}, {5, 5, 5}));
     scene.lights.push_back(make_sphere_light({1.5f, 0.5f, 0.5f}, 0.1f, {40, 10, 10}));
+    TriangleMesh panel;  // two triangles facing down: the spherical-triangle batch
+    panel.positions = {{-0.5f, 2.9f, -0.5f}, {0.5f, 2.9f, -0.5f}, {0.5f, 2.9f, 0.5f}, {-0.5f, 2.9f, 0.5f}};
+    panel.indices = {0, 1, 2, 0, 2, 3};
+    scene.lights.push_back(make_mesh_light(panel, {4, 4, 4}, std::nullopt, false));
     scene.settings.light_selection = strategy;
     expect_draws_match(scene, light_selection_name(strategy), strategy == LightSelection::Importance);
   }

@@ -4,8 +4,10 @@
 // invariance.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "core/chi2.h"
 #include "core/warp.h"
@@ -222,6 +224,55 @@ TEST(MeshLight, ScaleInvariant) {
       EXPECT_LT(length(s->wi - ref->wi), 1e-5f) << k;
     }
   }
+}
+
+}  // namespace
+}  // namespace lumis
+
+namespace lumis {
+namespace {
+
+bool same(float a, float b) { return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b); }
+bool same(Vec3 a, Vec3 b) { return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z); }
+
+// sample_many (the spherical triangles side by side, core/spherical_triangle_batch.cpp) against sample() one receiver
+// at a time, bit for bit: both methods, one- and two-sided, a textured light, receivers inside and outside the
+// tetrahedron, far (area fallback) and at a corner, more receivers than a kernel chunk.
+TEST(MeshLight, SampleManyEqualsSample) {
+  const TriangleMesh mesh = tetrahedron();
+  Pcg32 rng(13, 4);
+  constexpr int n = 150;
+  std::vector<LightSampleContext> ctx;
+  std::vector<Vec2> u;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 dir = normalize(Vec3{rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f});
+    const float dists[] = {0.1f, 1.5f, 4.0f, 3000.0f};
+    Vec3 p = Vec3{0.2f, -0.1f, 0.3f} + dir * dists[i % 4] * (0.5f + rng.next_float());
+    if (i % 25 == 3) p = mesh.positions[1];
+    ctx.push_back({p, normalize(Vec3{rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f})});
+    u.push_back({rng.next_float(), rng.next_float()});
+  }
+  int compared = 0;
+  for (TriangleSampling m : {TriangleSampling::Area, TriangleSampling::SphericalTriangle})
+    for (bool two_sided : {false, true})
+      for (bool textured : {false, true}) {
+        const auto light = make_mesh_light(mesh, {1, 2, 3}, textured ? std::optional<Texture>(checker()) : std::nullopt,
+                                           two_sided, m);
+        std::vector<LightSample> out(n);
+        bool ok[n];
+        light->sample_many(ctx.data(), u.data(), n, out.data(), ok);
+        for (int k = 0; k < n; ++k) {
+          const std::optional<LightSample> ls = light->sample(ctx[k], u[k]);
+          ASSERT_EQ(ok[k], ls.has_value()) << "lane " << k;
+          if (!ls) continue;
+          ++compared;
+          ASSERT_TRUE(same(ls->wi, out[k].wi) && same(ls->dist, out[k].dist) && same(ls->pdf, out[k].pdf) &&
+                      same(ls->p_light, out[k].p_light) && same(ls->n_light, out[k].n_light) &&
+                      same(ls->le, out[k].le))
+              << "lane " << k << (two_sided ? " two-sided" : " one-sided") << (textured ? " textured" : "");
+        }
+      }
+  EXPECT_GT(compared, 400);  // of 1200 draws, those toward a face seen from its front
 }
 
 }  // namespace
