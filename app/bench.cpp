@@ -232,7 +232,7 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
     no_shadow_packets.push_back(render_once(*scene, threads, true, /*shadow_packets=*/false));
     if (r == 0) {  // the peak of loading and rendering, before the raw benchmark's ray buffers exist
       res.peak_rss = proc_status_bytes("VmHWM");
-      raw = std::make_unique<RawBench>(*scene, s.width, s.height, threads, rays);
+      raw = std::make_unique<RawBench>(*scene, s.width, s.height, threads, rays, o.quick ? 0.0 : 0.1);
       const uint32_t spp = s.spp;
       for (size_t i = 0; i < variants.size(); ++i) {
         // At most kMaxLoggedRays rays (32 bytes each) per variant: beyond, a render with fewer samples per pixel

@@ -61,10 +61,11 @@ struct RawThroughput {
 };
 
 /// Makes the rays once (from the scene's camera at width x height, its hit points and its lights), then times
-/// only the Embree calls, on `threads` threads, as often as asked.
+/// only the Embree calls, on `threads` threads, as often as asked; each kind's rays are traced again until
+/// min_seconds have passed (0: once).
 class RawBench {
  public:
-  RawBench(const Scene& scene, int width, int height, int threads, size_t rays_per_kind);
+  RawBench(const Scene& scene, int width, int height, int threads, size_t rays_per_kind, double min_seconds);
   ~RawBench();
   /// One timing of every kind of ray.
   RawThroughput measure();

@@ -35,22 +35,30 @@ double median(std::vector<double> v) {
 
 enum class Query { Intersect, Occluded };
 
-// One timing of fn over n rays in tasks of kGrain rays; fn returns a count (hits or occluded rays) so that the
+// One timing of fn over n rays in tasks of kGrain rays, the whole set traced again until min_seconds have passed
+// (the same rays in the same order, so their locality is that of one pass; a single pass of a fast kind takes tens
+// of milliseconds, which one scheduling hiccup can spoil). fn returns a count (hits or occluded rays) so that the
 // fraction can be checked.
-Rate time_rays(tbb::task_arena& arena, size_t n, const std::function<size_t(size_t, size_t)>& fn,
+Rate time_rays(tbb::task_arena& arena, double min_seconds, size_t n, const std::function<size_t(size_t, size_t)>& fn,
                double* fraction = nullptr) {
   if (n == 0) return {};
   std::atomic<size_t> count{0};
   const double c0 = process_cpu_seconds();
   const auto t0 = std::chrono::steady_clock::now();
-  arena.execute([&] {
-    tbb::parallel_for(size_t(0), (n + kGrain - 1) / kGrain,
-                      [&](size_t c) { count += fn(c * kGrain, std::min(n, (c + 1) * kGrain)); });
-  });
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  size_t passes = 0;
+  double wall = 0;
+  do {
+    arena.execute([&] {
+      tbb::parallel_for(size_t(0), (n + kGrain - 1) / kGrain,
+                        [&](size_t c) { count += fn(c * kGrain, std::min(n, (c + 1) * kGrain)); });
+    });
+    ++passes;
+    wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  } while (wall < min_seconds);
   const double cpu = process_cpu_seconds() - c0;
-  if (fraction) *fraction = double(count.load()) / double(n);
-  return {double(n) / std::max(wall, 1e-9), double(n) / std::max(cpu, 1e-6)};
+  const double rays = double(n) * double(passes);
+  if (fraction) *fraction = double(count.load()) / rays;
+  return {rays / std::max(wall, 1e-9), rays / std::max(cpu, 1e-6)};
 }
 
 size_t trace1(RTCScene scene, const std::vector<Ray>& rays, size_t begin, size_t end, Query q) {
@@ -110,13 +118,14 @@ struct RawBench::Impl {
   tbb::task_arena arena;
   FtzObserver ftz{arena};
   std::vector<Ray> cam, bounce, shadow;
-  Impl(const Scene& s, int threads) : scene(s), arena(std::max(1, threads)) {}
+  double min_seconds;
+  Impl(const Scene& s, int threads, double min_s) : scene(s), arena(std::max(1, threads)), min_seconds(min_s) {}
 };
 
 RawBench::~RawBench() = default;
 
-RawBench::RawBench(const Scene& scene, int width, int height, int threads, size_t n_rays)
-    : impl_(std::make_unique<Impl>(scene, threads)) {
+RawBench::RawBench(const Scene& scene, int width, int height, int threads, size_t n_rays, double min_seconds)
+    : impl_(std::make_unique<Impl>(scene, threads, min_seconds)) {
   // Camera rays in 4x4 pixel blocks, all samples of a block together: a packet is 16 neighbouring pixels, as a
   // packet tracer would form them; render() visits pixels in the same tile-local order.
   Camera camera = scene.camera;
@@ -173,29 +182,29 @@ RawThroughput RawBench::measure() {
   out.bounce_rays = bounce.size();
   out.shadow_rays = shadow.size();
   using Range = std::function<size_t(size_t, size_t)>;
-  out.camera1 = time_rays(m.arena, cam.size(), Range([&](size_t b, size_t e) {
+  out.camera1 = time_rays(m.arena, m.min_seconds, cam.size(), Range([&](size_t b, size_t e) {
                             return trace1(rtc, cam, b, e, Query::Intersect);
                           }),
                           &out.camera_hit_fraction);
-  out.camera16 = time_rays(m.arena, cam.size(), Range([&](size_t b, size_t e) {
+  out.camera16 = time_rays(m.arena, m.min_seconds, cam.size(), Range([&](size_t b, size_t e) {
                              return trace16(rtc, cam, b, e, Query::Intersect, true);
                            }));
-  out.bounce1 = time_rays(m.arena, bounce.size(), Range([&](size_t b, size_t e) {
+  out.bounce1 = time_rays(m.arena, m.min_seconds, bounce.size(), Range([&](size_t b, size_t e) {
                             return trace1(rtc, bounce, b, e, Query::Intersect);
                           }),
                           &out.bounce_hit_fraction);
-  out.bounce16 = time_rays(m.arena, bounce.size(), Range([&](size_t b, size_t e) {
+  out.bounce16 = time_rays(m.arena, m.min_seconds, bounce.size(), Range([&](size_t b, size_t e) {
                              return trace16(rtc, bounce, b, e, Query::Intersect, false);
                            }));
-  out.shadow1 = time_rays(m.arena, shadow.size(), Range([&](size_t b, size_t e) {
+  out.shadow1 = time_rays(m.arena, m.min_seconds, shadow.size(), Range([&](size_t b, size_t e) {
                             return trace1(rtc, shadow, b, e, Query::Occluded);
                           }),
                           &out.shadow_occluded_fraction);
-  out.shadow16 = time_rays(m.arena, shadow.size(), Range([&](size_t b, size_t e) {
+  out.shadow16 = time_rays(m.arena, m.min_seconds, shadow.size(), Range([&](size_t b, size_t e) {
                              return trace16(rtc, shadow, b, e, Query::Occluded, false);
                            }));
   const Geometry& g = m.scene.geometry;
-  out.bounce_lumis = time_rays(m.arena, bounce.size(), Range([&](size_t b, size_t e) {
+  out.bounce_lumis = time_rays(m.arena, m.min_seconds, bounce.size(), Range([&](size_t b, size_t e) {
                                  size_t found = 0;
                                  for (size_t i = b; i < e; ++i) {
                                    Hit h;
@@ -203,7 +212,7 @@ RawThroughput RawBench::measure() {
                                  }
                                  return found;
                                }));
-  out.light_query = time_rays(m.arena, bounce.size(), Range([&](size_t b, size_t e) {
+  out.light_query = time_rays(m.arena, m.min_seconds, bounce.size(), Range([&](size_t b, size_t e) {
                                 LightHitRecord hits[64];
                                 size_t found = 0;
                                 for (size_t i = b; i < e; ++i) found += g.all_light_hits(bounce[i], hits, 64) > 0;
