@@ -242,47 +242,49 @@ bool Geometry::intersect(const Ray& ray, Hit& hit) const {
   return true;
 }
 
-void Geometry::intersect_each(const Ray* rays, int n, const bool* active, Hit* hits, bool* found) const {
-  // In chunks of 16: every ray of a chunk is traced before its hit records are filled.
-  for (int first = 0; first < n; first += 16) {
-    const int m = std::min(16, n - first);
-    intersect_each16(rays + first, m, active + first, hits + first, found + first);
-  }
+void Geometry::intersect_each(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found) const {
+  // In chunks of 16 listed lanes: every ray of a chunk is traced before its hit records are filled.
+  for (int first = 0; first < m; first += 16)
+    intersect_each16(rays, lanes + first, std::min(16, m - first), hits, found);
 }
 
-void Geometry::intersect_each16(const Ray* rays, int n, const bool* active, Hit* hits, bool* found) const {
+void Geometry::intersect_each16(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found) const {
   struct EmbreeHit {
     uint32_t geom_id, prim_id;
     float u, v, t;
   } raw[16];
+  bool got[16];
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   QueryLog* const log = t_query_log;
-  for (int i = 0; i < n; ++i) {
-    found[i] = false;
-    if (!active[i] || !ray_is_valid(rays[i])) continue;
-    if (log) [[unlikely]] log->add(QueryLog::Call::Intersect1, &rays[i], 1);
-    RTCRayHit rh = to_embree(rays[i]);
+  for (int i = 0; i < m; ++i) {
+    const Ray& ray = rays[lanes[i]];
+    got[i] = false;
+    if (!ray_is_valid(ray)) continue;
+    if (log) [[unlikely]] log->add(QueryLog::Call::Intersect1, &ray, 1);
+    RTCRayHit rh = to_embree(ray);
     rtcIntersect1(impl_->scene, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-    found[i] = true;
+    got[i] = true;
     raw[i] = {rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar};
     const Impl::Slot& slot = impl_->slots[rh.hit.geomID];
     if (slot.is_mesh) {  // the corner record (36 bytes: up to two cache lines) and the triangle's indices
       const Vec3* corner = &impl_->corners[slot.index][3 * size_t(rh.hit.primID)];
       __builtin_prefetch(corner);
       __builtin_prefetch(reinterpret_cast<const char*>(corner) + 35);
-      const TriangleMesh& m = impl_->meshes[slot.index];
-      if (!m.normals.empty() || !m.uv0.empty()) __builtin_prefetch(&m.indices[3 * size_t(rh.hit.primID)]);
+      const TriangleMesh& mesh = impl_->meshes[slot.index];
+      if (!mesh.normals.empty() || !mesh.uv0.empty()) __builtin_prefetch(&mesh.indices[3 * size_t(rh.hit.primID)]);
     }
   }
-  for (int i = 0; i < n; ++i) {
-    if (!found[i]) continue;
-    Hit& hit = hits[i];
+  for (int i = 0; i < m; ++i) {
+    const int k = lanes[i];
+    found[k] = got[i];
+    if (!got[i]) continue;
+    Hit& hit = hits[k];
     hit.t = raw[i].t;
-    hit.p = rays[i].o + rays[i].d * hit.t;
+    hit.p = rays[k].o + rays[k].d * hit.t;
     fill_hit(raw[i].geom_id, raw[i].prim_id, raw[i].u, raw[i].v, hit);
-    hit.front = dot(rays[i].d, hit.ng) < 0;
+    hit.front = dot(rays[k].d, hit.ng) < 0;
   }
 }
 

@@ -175,10 +175,10 @@ class Geometry {
   /// Closest hits of up to 16 coherent rays (camera rays) in one Embree packet query: found[i] and hits[i] as
   /// intersect(rays[i], hits[i]) would give, for i < n (an invalid ray is a miss).
   void intersect16(const Ray* rays, int n, Hit* hits, bool* found) const;
-  /// intersect(rays[i], hits[i]) for every i < n with active[i], the same results bit for bit (found[i] false for
-  /// the others, their hits untouched); in chunks of 16, all rays of a chunk are traced before any of its hit
+  /// found[k] = intersect(rays[k], hits[k]) for every lane k = lanes[i], i < m, the same results bit for bit (other
+  /// lanes' found and hits untouched); in chunks of 16 lanes, all rays of a chunk are traced before any of its hit
   /// records is read, so that the records' memory loads (prefetched) overlap instead of each stalling its ray.
-  void intersect_each(const Ray* rays, int n, const bool* active, Hit* hits, bool* found) const;
+  void intersect_each(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found) const;
   /// Whether anything lies in (ray.tmin, ray.tmax).
   bool occluded(const Ray& ray) const;
   /// occluded(rays[i]) for i < n (n <= 16) in one Embree packet query (shadow rays of neighbouring paths).
@@ -202,8 +202,8 @@ class Geometry {
   static void record_queries(QueryLog* log);
 
  private:
-  /// intersect_each for one chunk (n <= 16).
-  void intersect_each16(const Ray* rays, int n, const bool* active, Hit* hits, bool* found) const;
+  /// intersect_each for one chunk (m <= 16).
+  void intersect_each16(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -149,7 +149,7 @@ class PathIntegrator final : public Integrator {
           if (found[k]) hits[k] = *batch.primary[k];
         }
       } else {
-        scene.geometry.intersect_each(rays, n, alive, hits, found);
+        scene.geometry.intersect_each(rays, live_lanes, live, hits, found);
       }
 
       // The sampler dimensions of every lane that may scatter here, side by side (a lane that then cannot

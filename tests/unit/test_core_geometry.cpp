@@ -72,7 +72,7 @@ TEST(Geometry, PacketQueryMatchesSingleRays) {
 }
 
 // Rays traced one by one with their hit records filled afterwards (intersect_each): the very same hits as
-// intersect(), bit for bit, including the error bound; inactive lanes keep their hit untouched and report no hit.
+// intersect(), bit for bit, including the error bound; lanes not listed keep their hit and found flag untouched.
 TEST(Geometry, EachQueryMatchesSingleRaysBitForBit) {
   Geometry g;
   build_scene(g);
@@ -93,10 +93,14 @@ TEST(Geometry, EachQueryMatchesSingleRaysBitForBit) {
     Hit each[40];
     for (Hit& h : each) h.material = -7;  // marks an untouched record
     bool found[40];
-    g.intersect_each(rays, n, active, each, found);
+    int lanes[40], m = 0;
+    for (int i = n - 1; i >= 0; --i)  // listed backwards: any order
+      if (active[i]) lanes[m++] = i;
+    for (int i = 0; i < n; ++i) found[i] = !active[i];  // unlisted lanes' flags must stay as they are
+    g.intersect_each(rays, lanes, m, each, found);
     for (int i = 0; i < n; ++i) {
       if (!active[i]) {
-        EXPECT_FALSE(found[i]) << i;
+        EXPECT_TRUE(found[i]) << i;
         EXPECT_EQ(each[i].material, -7) << i;
         continue;
       }
@@ -213,17 +217,17 @@ TEST(Geometry, TinyTrianglesHitWhereTheRayMeetsThem) {
     g.commit();
     Ray rays[16];
     Vec3 targets[16];
-    bool active[16];
     for (int i = 0; i < 16; ++i) {
       targets[i] = Vec3{0.3f - 0.05f * i, 0, -0.4f + 0.04f * i} * s;
       const Vec3 o = Vec3{-0.7f + 0.09f * i, 2.0f, 0.3f} * s;
       rays[i] = {o, normalize(targets[i] - o), 0, INFINITY};
-      active[i] = true;
     }
     Hit packet[16], each[16];
     bool found_packet[16], found_each[16];
     g.intersect16(rays, 16, packet, found_packet);
-    g.intersect_each(rays, 16, active, each, found_each);
+    int lanes[16];
+    for (int i = 0; i < 16; ++i) lanes[i] = i;
+    g.intersect_each(rays, lanes, 16, each, found_each);
     for (int i = 0; i < 16; ++i) {
       Hit single;
       ASSERT_TRUE(g.intersect(rays[i], single)) << s << " " << i;
