@@ -4,7 +4,8 @@
 // angles whose sum is close to pi (small triangles), which float cannot resolve below ~1e-3 sr.
 //
 // Failure (nullopt) depends only on the geometry (p and the polygon), never on u, so a caller can ask "would
-// sampling succeed from here?" with any u and reproduce the choice in its pdf.
+// sampling succeed from here?" with any u and reproduce the choice in its pdf. Arvo's steps themselves are in
+// core/spherical_triangle.h, shared with the batch kernel that mesh lights use.
 #include <cmath>
 
 #include "core/spherical_triangle.h"

@@ -66,8 +66,9 @@ inline double atan2_upper(double y, double x) {
   return x < 0 ? kDPi - r : r;
 }
 
-/// sin and cos of x (radians, |x| < 2^30) within about one double ulp: x reduced by the nearest multiple of pi / 2
-/// (two-part constant, so the product is exact), then Taylor series on [-pi / 4, pi / 4] (truncation below 1e-19).
+/// sin and cos of x (radians, |x| < 2^20; Arvo needs [0, 2 pi)) within two double ulps: x reduced by the nearest
+/// multiple q of pi / 2 (a 33-bit head, so q times it is exact, and a tail), then Taylor series on [-pi / 4, pi / 4]
+/// (truncation below 1e-19).
 inline void sincos_radians(double x, double& sin_out, double& cos_out) {
   constexpr double kTwoOverPi = 0.63661977236758134308;
   constexpr double kRound = 6755399441055744.0;  // 1.5 * 2^52: (v + kRound) - kRound rounds v to an integer
