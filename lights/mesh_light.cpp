@@ -84,12 +84,9 @@ class MeshLight final : public Light {
       }
       sph_tri::run(b, m, level);
       for (int k = 0; k < m; ++k) {
-        const std::optional<LightSample> ls =
-            ch[k].emits ? finish(ctx[begin + k], ch[k],
-                                 b.ok[k] ? std::make_optional<SphericalSample>(Vec3{b.wx[k], b.wy[k], b.wz[k]},
-                                                                               b.pdf[k])
-                                         : std::nullopt)
-                        : std::nullopt;
+        std::optional<SphericalSample> ss;
+        if (b.ok[k]) ss = SphericalSample{{b.wx[k], b.wy[k], b.wz[k]}, b.pdf[k]};
+        const std::optional<LightSample> ls = ch[k].emits ? finish(ctx[begin + k], ch[k], ss) : std::nullopt;
         ok[begin + k] = ls.has_value();
         if (ls) out[begin + k] = *ls;
       }
