@@ -34,11 +34,12 @@ struct MisVariant {
     }
     if (dot(wi_world, v.ng) <= 0) return std::nullopt;
     const Vec3 wi = v.frame.to_local(wi_world);
-    const float pdf_bsdf = v.bsdf.pdf(v.wo, wi);
+    const BsdfEval e = v.bsdf.eval(v.wo, wi);
+    const float pdf_bsdf = e.pdf;
     const float pdf_light = c_l > 0 ? light_strategy_pdf(v.scene, v.hit, v.ctx, wi_world, c) : 0.0f;
     const float pdf = (1 - c_l) * pdf_bsdf + c_l * pdf_light;
     if (!(pdf > 0)) return std::nullopt;
-    return std::make_optional<Scatter>(wi_world, v.bsdf.f(v.wo, wi) * (std::abs(wi.z) / pdf), pdf_bsdf);
+    return std::make_optional<Scatter>(wi_world, e.f * (std::abs(wi.z) / pdf), pdf_bsdf);
   }
 };
 

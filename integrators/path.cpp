@@ -113,15 +113,15 @@ std::optional<ShadowQuery> sample_direct(const Vertex& v, const LightDraw& draw,
   // Shading-normal rule: light arriving from below the geometric surface does not reflect (no light leaks).
   if (dot(ls.wi, v.ng) <= 0) return std::nullopt;
   const Vec3 wi = v.frame.to_local(ls.wi);
-  const Color f = v.bsdf.f(v.wo, wi);
-  if (is_black(f)) return std::nullopt;
+  const BsdfEval e = v.bsdf.eval(v.wo, wi);
+  if (is_black(e.f)) return std::nullopt;
   ++counters.rays;
   ++counters.shadow_rays;
   const float pdf_light = draw.choice.pmf * ls.pdf;
-  const float w = mis_weighted ? mis_weight(pdf_light, v.bsdf.pdf(v.wo, wi), heuristic) : 1.0f;
+  const float w = mis_weighted ? mis_weight(pdf_light, e.pdf, heuristic) : 1.0f;
   return std::make_optional<ShadowQuery>(
       std::isinf(ls.dist) ? spawn_ray(v.hit, ls.wi) : spawn_ray_to(v.hit, ls.p_light),
-      f * ls.le * (std::abs(wi.z) * w / pdf_light));
+      e.f * ls.le * (std::abs(wi.z) * w / pdf_light));
 }
 
 float light_pdf_for_hit(const Scene& scene, const LightSampleContext& ctx, int light, const Hit* on_light, Vec3 dir) {

@@ -27,7 +27,8 @@ struct UniformVariant {
     if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
     const Vec3 w = v.frame.to_world(wi);
     if (dot(w, v.ng) <= 0) return std::nullopt;
-    return std::make_optional<Scatter>(w, v.bsdf.f(v.wo, wi) * (std::abs(wi.z) / pdf), v.bsdf.pdf(v.wo, wi));
+    const BsdfEval e = v.bsdf.eval(v.wo, wi);
+    return std::make_optional<Scatter>(w, e.f * (std::abs(wi.z) / pdf), e.pdf);
   }
 };
 

@@ -22,11 +22,19 @@ struct BsdfSample {
   Color f;       ///< BSDF value f(wo, wi), cosine excluded
 };
 
+/// f and pdf of one pair of directions together (Mitsuba's eval_pdf): the values f() and pdf() return, bit for bit,
+/// for the work of one call where the two share intermediate results (the GGX half vector, D and Lambda(wo)).
+struct BsdfEval {
+  Color f;        ///< BSDF value, cosine excluded
+  float pdf = 0;  ///< solid-angle density of wi under sample()
+};
+
 /// Lambertian reflection: f = albedo / pi on the upper hemisphere.
 struct DiffuseBsdf {
   Color albedo;
-  Color f(Vec3 wo, Vec3 wi) const;                 ///< local frame, cosine excluded
-  float pdf(Vec3 wo, Vec3 wi) const;               ///< solid angle
+  Color f(Vec3 wo, Vec3 wi) const { return eval(wo, wi).f; }        ///< local frame, cosine excluded
+  float pdf(Vec3 wo, Vec3 wi) const { return eval(wo, wi).pdf; }    ///< solid angle of wi
+  BsdfEval eval(Vec3 wo, Vec3 wi) const;                             ///< local frame; f and solid-angle pdf
   std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
 };
 
@@ -35,8 +43,9 @@ struct GgxBsdf {
   Color f0;          ///< Fresnel reflectance at normal incidence
   float alpha;       ///< GGX roughness (isotropic), already clamped to a small minimum
   VndfMethod method = VndfMethod::SphericalCap2023;
-  Color f(Vec3 wo, Vec3 wi) const;
-  float pdf(Vec3 wo, Vec3 wi) const;
+  Color f(Vec3 wo, Vec3 wi) const { return eval(wo, wi).f; }        ///< local frame, cosine excluded
+  float pdf(Vec3 wo, Vec3 wi) const { return eval(wo, wi).pdf; }    ///< solid angle of wi
+  BsdfEval eval(Vec3 wo, Vec3 wi) const;                             ///< local frame; f and solid-angle pdf
   std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
 };
 
@@ -47,8 +56,9 @@ struct PbrBsdf {
   DiffuseBsdf diffuse;
   GgxBsdf specular;
   float diffuse_probability;
-  Color f(Vec3 wo, Vec3 wi) const;
-  float pdf(Vec3 wo, Vec3 wi) const;
+  Color f(Vec3 wo, Vec3 wi) const { return eval(wo, wi).f; }        ///< local frame, cosine excluded
+  float pdf(Vec3 wo, Vec3 wi) const { return eval(wo, wi).pdf; }    ///< solid angle of wi
+  BsdfEval eval(Vec3 wo, Vec3 wi) const;                             ///< local frame; f and solid-angle pdf
   std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
 };
 
@@ -65,6 +75,7 @@ class Bsdf {
   Bsdf(T b) : v_(std::move(b)) {}  // NOLINT: implicit on purpose
   Color f(Vec3 wo, Vec3 wi) const { return std::visit([&](const auto& b) { return b.f(wo, wi); }, v_); }
   float pdf(Vec3 wo, Vec3 wi) const { return std::visit([&](const auto& b) { return b.pdf(wo, wi); }, v_); }
+  BsdfEval eval(Vec3 wo, Vec3 wi) const { return std::visit([&](const auto& b) { return b.eval(wo, wi); }, v_); }
   std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const {
     return std::visit([&](const auto& b) { return b.sample(wo, u_lobe, u); }, v_);
   }

@@ -6,25 +6,20 @@
 
 namespace lumis {
 
-/// Local frame, cosine excluded: albedo / pi when both directions are above the surface.
-Color DiffuseBsdf::f(Vec3 wo, Vec3 wi) const {
-  if (!(wo.z > 0 && wi.z > 0)) return Color(0.0f);
-  return albedo * kInvPi;
-}
-
-/// Solid angle: cos(theta_i) / pi (projected-solid-angle sampling), 0 unless both directions are above.
-float DiffuseBsdf::pdf(Vec3 wo, Vec3 wi) const {
-  if (!(wo.z > 0 && wi.z > 0)) return 0;
-  return cosine_hemisphere_pdf(wi);
+/// Local frame: f = albedo / pi (cosine excluded) and pdf = cos(theta_i) / pi per solid angle (projected-solid-
+/// angle sampling), both 0 unless both directions are above the surface.
+BsdfEval DiffuseBsdf::eval(Vec3 wo, Vec3 wi) const {
+  if (!(wo.z > 0 && wi.z > 0)) return {};
+  return {albedo * kInvPi, cosine_hemisphere_pdf(wi)};
 }
 
 /// Local frame: wi by cosine-weighted hemisphere sampling; u_lobe is unused (single lobe).
 std::optional<BsdfSample> DiffuseBsdf::sample(Vec3 wo, float /*u_lobe*/, Vec2 u) const {
   if (!(wo.z > 0)) return std::nullopt;
   const Vec3 wi = sample_cosine_hemisphere(u);
-  const float p = pdf(wo, wi);
-  if (!(p > 0)) return std::nullopt;  // u on the boundary can give wi.z == 0
-  return std::make_optional<BsdfSample>(wi, f(wo, wi), p);
+  const BsdfEval e = eval(wo, wi);
+  if (!(e.pdf > 0)) return std::nullopt;  // u on the boundary can give wi.z == 0
+  return std::make_optional<BsdfSample>(wi, e.f, e.pdf);
 }
 
 namespace {

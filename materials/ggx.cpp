@@ -8,31 +8,22 @@
 
 namespace lumis {
 
-/// Local frame, cosine excluded: D(h) G2(wo, wi) F(wo.h) / (4 cos_o cos_i) with h the half vector.
-Color GgxBsdf::f(Vec3 wo, Vec3 wi) const {
-  if (!(wo.z > 0 && wi.z > 0)) return Color(0.0f);
+/// Local frame. f (cosine excluded) = D(h) G2(wo, wi) F(wo.h) / (4 cos_o cos_i) with h the half vector; pdf (solid
+/// angle of wi) = the visible-normal density of h times the reflection Jacobian 1 / (4 wo.h), which simplifies to
+/// D(h) G1(wo) / (4 cos_o): wo.h cancels. D, the half vector and Lambda(wo) serve both.
+BsdfEval GgxBsdf::eval(Vec3 wo, Vec3 wi) const {
+  if (!(wo.z > 0 && wi.z > 0)) return {};
   const Vec3 sum = wo + wi;
   const float l2 = length_squared(sum);
-  if (!(l2 > 0)) return Color(0.0f);
+  if (!(l2 > 0)) return {};
   const float len = std::sqrt(l2);
   const Vec3 h = sum / len;
   const float d = ggx_d(h, alpha, alpha);
-  const float g = ggx_g2(wo, wi, alpha, alpha);
+  const float lambda_o = ggx_lambda(wo, alpha, alpha);
+  const float g2 = 1.0f / (1.0f + lambda_o + ggx_lambda(wi, alpha, alpha));
   // For unit wo, wi: wo.h = wi.h = |wo + wi| / 2. This form is symmetric by construction (reciprocity survives
   // rounding) and stays accurate when wo and wi are nearly opposite, where h itself is ill-conditioned.
-  return schlick_fresnel(f0, 0.5f * len) * (d * g / (4.0f * wo.z * wi.z));
-}
-
-/// Solid angle of wi: the visible-normal density of h times the reflection Jacobian 1 / (4 wo.h).
-float GgxBsdf::pdf(Vec3 wo, Vec3 wi) const {
-  if (!(wo.z > 0 && wi.z > 0)) return 0;
-  const Vec3 sum = wo + wi;
-  const float l2 = length_squared(sum);
-  if (!(l2 > 0)) return 0;
-  const Vec3 h = sum / std::sqrt(l2);
-  const float cos_oh = dot(wo, h);
-  if (!(cos_oh > 0)) return 0;
-  return ggx_vndf_pdf(wo, h, alpha, alpha) / (4.0f * cos_oh);
+  return {schlick_fresnel(f0, 0.5f * len) * (d * g2 / (4.0f * wo.z * wi.z)), d / ((1.0f + lambda_o) * 4.0f * wo.z)};
 }
 
 /// Local frame: a visible normal for wo, mirrored; fails when the mirrored direction is below the surface.
@@ -41,10 +32,10 @@ std::optional<BsdfSample> GgxBsdf::sample(Vec3 wo, float /*u_lobe*/, Vec2 u) con
   const Vec3 wm = sample_ggx_vndf(wo, alpha, alpha, u, method);
   const Vec3 wi = reflect(wo, wm);
   if (!(wi.z > 0)) return std::nullopt;
-  // Evaluate through f() and pdf() so that a sample carries exactly what they return for (wo, wi).
-  const float p = pdf(wo, wi);
-  if (!(p > 0) || !std::isfinite(p)) return std::nullopt;
-  return std::make_optional<BsdfSample>(wi, f(wo, wi), p);
+  // Evaluate through eval() so that a sample carries exactly what f() and pdf() return for (wo, wi).
+  const BsdfEval e = eval(wo, wi);
+  if (!(e.pdf > 0) || !std::isfinite(e.pdf)) return std::nullopt;
+  return std::make_optional<BsdfSample>(wi, e.f, e.pdf);
 }
 
 namespace {

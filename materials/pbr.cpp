@@ -16,22 +16,18 @@
 
 namespace lumis {
 
-/// Local frame, cosine excluded: Fresnel-coupled Lambert lobe plus the GGX lobe.
-Color PbrBsdf::f(Vec3 wo, Vec3 wi) const {
-  if (!(wo.z > 0 && wi.z > 0)) return Color(0.0f);
+/// Local frame. f (cosine excluded): the Fresnel-coupled Lambert lobe plus the GGX lobe; pdf (solid angle of wi):
+/// the mixture density c p_diffuse + (1 - c) p_specular that sample() draws from.
+BsdfEval PbrBsdf::eval(Vec3 wo, Vec3 wi) const {
+  if (!(wo.z > 0 && wi.z > 0)) return {};
   const Color white(1.0f);
   const Color coupling = (white - schlick_fresnel(specular.f0, wo.z)) * (white - schlick_fresnel(specular.f0, wi.z));
-  return diffuse.f(wo, wi) * coupling + specular.f(wo, wi);
-}
-
-/// Solid angle: the mixture density c p_diffuse + (1 - c) p_specular that sample() draws from.
-float PbrBsdf::pdf(Vec3 wo, Vec3 wi) const {
-  if (!(wo.z > 0 && wi.z > 0)) return 0;
+  const BsdfEval d = diffuse.eval(wo, wi), s = specular.eval(wo, wi);
   const float c = diffuse_probability;
   float p = 0;
-  if (c > 0) p += c * diffuse.pdf(wo, wi);
-  if (c < 1) p += (1 - c) * specular.pdf(wo, wi);
-  return p;
+  if (c > 0) p += c * d.pdf;
+  if (c < 1) p += (1 - c) * s.pdf;
+  return {d.f * coupling + s.f, p};
 }
 
 /// Local frame: u_lobe < diffuse_probability picks the cosine lobe, otherwise visible-normal sampling.
@@ -44,9 +40,9 @@ std::optional<BsdfSample> PbrBsdf::sample(Vec3 wo, float u_lobe, Vec2 u) const {
     wi = reflect(wo, sample_ggx_vndf(wo, specular.alpha, specular.alpha, u, specular.method));
   }
   if (!(wi.z > 0)) return std::nullopt;
-  const float p = pdf(wo, wi);
-  if (!(p > 0) || !std::isfinite(p)) return std::nullopt;
-  return std::make_optional<BsdfSample>(wi, f(wo, wi), p);
+  const BsdfEval e = eval(wo, wi);
+  if (!(e.pdf > 0) || !std::isfinite(e.pdf)) return std::nullopt;
+  return std::make_optional<BsdfSample>(wi, e.f, e.pdf);
 }
 
 /// glTF parameters -> lobes: diffuse albedo base (1 - m), F0 = mix(0.04, base, m), alpha = max(r^2, min alpha);
