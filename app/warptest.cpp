@@ -67,7 +67,10 @@ const std::vector<WarpEntry>& registry() {
       {"uniform_hemisphere", nullptr, 0,
        [](float) { return Warp{sample_uniform_hemisphere, [](Vec3 w) { return double(uniform_hemisphere_pdf(w)); }}; }},
       {"cosine_hemisphere", nullptr, 0,
-       [](float) { return Warp{sample_cosine_hemisphere, [](Vec3 w) { return double(cosine_hemisphere_pdf(w)); }}; }},
+       [](float) {
+         return Warp{[](Vec2 u) -> std::optional<Vec3> { return sample_cosine_hemisphere(u); },
+                     [](Vec3 w) { return double(cosine_hemisphere_pdf(w)); }};
+       }},
       {"uniform_sphere", nullptr, 0,
        [](float) { return Warp{sample_uniform_sphere, [](Vec3) { return double(uniform_sphere_pdf()); }}; }},
       {"spherical_cap", "cos_max", 0.9f,

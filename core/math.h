@@ -125,6 +125,14 @@ inline void sincos_turns(float t, float& sin_out, float& cos_out) {
   cos_out = ((quadrant + 1) & 2 ? -1.0f : 1.0f) * (odd ? sf : cf);
 }
 
+/// (cos, sin) of the angle 2 pi t, t in turns: the azimuth the direction samplers take precomputed, so that a path
+/// batch computes its lanes' azimuths side by side (sincos_turns_many in core/sincos_batch.h, the same values).
+inline Vec2 turn_azimuth(float t) {
+  float s, c;
+  sincos_turns(t, s, c);
+  return {c, s};
+}
+
 /// Storage for N objects of a trivially destructible T, left uninitialised: scratch arrays in hot loops that are
 /// written before they are read (a T[N] of the vector types above is zeroed by their member initialisers).
 template <class T, int N>

@@ -78,12 +78,16 @@ Vec3 sample_ggx_vndf_heitz(Vec3 wo, float ax, float ay, Vec2 u) {
 /// Dupuy & Benyoub 2023: in the stretched configuration the visible normals are (c + v) / |c + v| for c uniform on
 /// the spherical cap z >= -v.z of the unit sphere, so sample that cap (uniform z, uniform phi), add v, unstretch.
 Vec3 sample_ggx_vndf_spherical_cap(Vec3 wo, float ax, float ay, Vec2 u) {
+  return sample_ggx_vndf_spherical_cap(wo, ax, ay, u, turn_azimuth(u.x));
+}
+
+/// The azimuth phi = 2 pi u.x of the cap point comes in as (cos phi, sin phi).
+Vec3 sample_ggx_vndf_spherical_cap(Vec3 wo, float ax, float ay, Vec2 u, Vec2 azimuth) {
   const Vec3 v = normalize_or({ax * wo.x, ay * wo.y, wo.z}, {0, 0, 1});
-  const float phi = 2.0f * kPi * u.x;
   // z uniform in (-v.z, 1]: the cap's solid angle is 2 pi (1 + v.z).
   const float z = std::fma(1.0f - u.y, 1.0f + v.z, -v.z);
   const float sin_theta = safe_sqrt(1.0f - z * z);
-  const Vec3 c{sin_theta * std::cos(phi), sin_theta * std::sin(phi), z};
+  const Vec3 c{sin_theta * azimuth.x, sin_theta * azimuth.y, z};
   const Vec3 h = c + v;  // unnormalised stretched normal; h.z >= 0 by construction
   return normalize_or({ax * h.x, ay * h.y, std::max(0.0f, h.z)}, {0, 0, 1});
 }
@@ -92,6 +96,11 @@ Vec3 sample_ggx_vndf_spherical_cap(Vec3 wo, float ax, float ay, Vec2 u) {
 Vec3 sample_ggx_vndf(Vec3 wo, float ax, float ay, Vec2 u, VndfMethod method) {
   return method == VndfMethod::Heitz2018 ? sample_ggx_vndf_heitz(wo, ax, ay, u)
                                          : sample_ggx_vndf_spherical_cap(wo, ax, ay, u);
+}
+
+Vec3 sample_ggx_vndf(Vec3 wo, float ax, float ay, Vec2 u, VndfMethod method, Vec2 azimuth) {
+  return method == VndfMethod::Heitz2018 ? sample_ggx_vndf_heitz(wo, ax, ay, u)
+                                         : sample_ggx_vndf_spherical_cap(wo, ax, ay, u, azimuth);
 }
 
 }  // namespace lumis

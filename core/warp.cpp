@@ -61,10 +61,14 @@ Vec2 invert_uniform_hemisphere(Vec3 w) { return {u_from_phi(w), clamp01(1.0f - w
 
 // ---- Cosine-weighted hemisphere (projected solid angle) ----
 
-Vec3 sample_cosine_hemisphere(Vec2 u) {
+Vec3 sample_cosine_hemisphere(Vec2 u) { return sample_cosine_hemisphere(u, turn_azimuth(u.x)); }
+
+Vec3 sample_cosine_hemisphere(Vec2 u, Vec2 azimuth) {
   // Lecture: p(theta) = 2 cos(theta) sin(theta), CDF 1 - cos^2(theta), so sin(theta) = sqrt(u.y) and
-  // cos(theta) = sqrt(1 - u.y); omega = (cos(2 pi u.x - pi) sqrt(u.y), sin(2 pi u.x - pi) sqrt(u.y), sqrt(1 - u.y)).
-  return from_phi_u(u.x, std::sqrt(u.y), std::sqrt(1.0f - u.y));
+  // cos(theta) = sqrt(1 - u.y); omega = (cos(2 pi u.x - pi) sqrt(u.y), sin(2 pi u.x - pi) sqrt(u.y), sqrt(1 - u.y)),
+  // where cos(2 pi u.x - pi) = -cos(2 pi u.x) and likewise for sin: the given azimuth, negated.
+  const float sin_theta = std::sqrt(u.y);
+  return {-azimuth.x * sin_theta, -azimuth.y * sin_theta, std::sqrt(1.0f - u.y)};
 }
 
 float cosine_hemisphere_pdf(Vec3 w) { return w.z > 0 ? w.z * kInvPi : 0.0f; }

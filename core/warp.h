@@ -26,6 +26,8 @@ Vec2 invert_uniform_hemisphere(Vec3 w);
 
 /// Lecture's projected-solid-angle sampling: (cos(2 pi u.x - pi) sqrt(u.y), sin(..) sqrt(u.y), sqrt(1 - u.y)).
 Vec3 sample_cosine_hemisphere(Vec2 u);
+/// The same with azimuth = turn_azimuth(u.x) = (cos, sin) of 2 pi u.x given (computed for many lanes at once).
+Vec3 sample_cosine_hemisphere(Vec2 u, Vec2 azimuth);
 /// Solid-angle density cos(theta)/pi for z > 0, else 0.
 float cosine_hemisphere_pdf(Vec3 w);
 Vec2 invert_cosine_hemisphere(Vec3 w);
@@ -104,7 +106,11 @@ enum class VndfMethod { Heitz2018, SphericalCap2023 };
 Vec3 sample_ggx_vndf_heitz(Vec3 wo, float ax, float ay, Vec2 u);
 /// Visible normal for wo by Dupuy & Benyoub 2023 ("Sampling Visible GGX Normals with Spherical Caps").
 Vec3 sample_ggx_vndf_spherical_cap(Vec3 wo, float ax, float ay, Vec2 u);
+/// The same with azimuth = turn_azimuth(u.x) given.
+Vec3 sample_ggx_vndf_spherical_cap(Vec3 wo, float ax, float ay, Vec2 u, Vec2 azimuth);
 /// Dispatch on method.
 Vec3 sample_ggx_vndf(Vec3 wo, float ax, float ay, Vec2 u, VndfMethod method);
+/// Dispatch on method, with azimuth = turn_azimuth(u.x) given (Heitz 2018 draws its azimuth from u.y: unused there).
+Vec3 sample_ggx_vndf(Vec3 wo, float ax, float ay, Vec2 u, VndfMethod method, Vec2 azimuth);
 
 }  // namespace lumis

@@ -11,8 +11,9 @@ struct BsdfVariant {
   Color emission_weight(const PathState&, const Scene&, int, const Hit*, Vec3) const { return Color(1); }
   static constexpr bool kLightDraws = false;
   std::optional<ShadowQuery> direct(const Vertex&, const LightDraw&, PathCounters&) const { return std::nullopt; }
-  std::optional<Scatter> scatter(const Vertex& v, float, Vec2, float u_lobe, Vec2 u, PathCounters&) const {
-    return scatter_bsdf(v, u_lobe, u);
+  std::optional<Scatter> scatter(const Vertex& v, float, Vec2, float u_lobe, Vec2 u, Vec2 azimuth,
+                                 PathCounters&) const {
+    return scatter_bsdf(v, u_lobe, u, azimuth);
   }
 };
 

@@ -19,8 +19,9 @@ struct LightVariant {
   std::optional<ShadowQuery> direct(const Vertex& v, const LightDraw& d, PathCounters& c) const {
     return sample_direct(v, d, /*mis_weighted=*/false, heuristic, c);
   }
-  std::optional<Scatter> scatter(const Vertex& v, float, Vec2, float u_lobe, Vec2 u, PathCounters&) const {
-    return scatter_bsdf(v, u_lobe, u);
+  std::optional<Scatter> scatter(const Vertex& v, float, Vec2, float u_lobe, Vec2 u, Vec2 azimuth,
+                                 PathCounters&) const {
+    return scatter_bsdf(v, u_lobe, u, azimuth);
   }
 };
 

@@ -16,7 +16,7 @@ struct MisVariant {
   Color emission_weight(const PathState&, const Scene&, int, const Hit*, Vec3) const { return Color(1); }
   static constexpr bool kLightDraws = false;
   std::optional<ShadowQuery> direct(const Vertex&, const LightDraw&, PathCounters&) const { return std::nullopt; }
-  std::optional<Scatter> scatter(const Vertex& v, float u_choice, Vec2 u_light, float u_lobe, Vec2 u,
+  std::optional<Scatter> scatter(const Vertex& v, float u_choice, Vec2 u_light, float u_lobe, Vec2 u, Vec2 azimuth,
                                  PathCounters& c) const {
     const float c_l = v.scene.lights.empty() ? 0.0f : c_light;
     Vec3 wi_world;
@@ -28,7 +28,7 @@ struct MisVariant {
       wi_world = ls->wi;
     } else {
       const float u_bsdf = std::min((u_lobe - c_l) / (1 - c_l), kOneMinusEpsilon);
-      const std::optional<BsdfSample> bs = v.bsdf.sample(v.wo, u_bsdf, u);
+      const std::optional<BsdfSample> bs = v.bsdf.sample(v.wo, u_bsdf, u, azimuth);
       if (!bs || !(bs->pdf > 0)) return std::nullopt;
       wi_world = v.frame.to_world(bs->wi);
     }

@@ -162,8 +162,8 @@ float light_strategy_pdf(const Scene& scene, const Hit& from, const LightSampleC
   return pdf;
 }
 
-std::optional<Scatter> scatter_bsdf(const Vertex& v, float u_lobe, Vec2 u) {
-  const std::optional<BsdfSample> bs = v.bsdf.sample(v.wo, u_lobe, u);
+std::optional<Scatter> scatter_bsdf(const Vertex& v, float u_lobe, Vec2 u, Vec2 azimuth) {
+  const std::optional<BsdfSample> bs = v.bsdf.sample(v.wo, u_lobe, u, azimuth);
   if (!bs || !(bs->pdf > 0)) return std::nullopt;
   const Vec3 wi = v.frame.to_world(bs->wi);
   if (dot(wi, v.ng) <= 0) return std::nullopt;  // through the geometric surface: no contribution

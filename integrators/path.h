@@ -6,18 +6,19 @@
 //   std::optional<ShadowQuery> direct(const Vertex& v, const LightDraw& d, PathCounters& c) const;
 //                                                                   // NEE: the shadow ray and its value, or none
 //   std::optional<Scatter> scatter(const Vertex& v, float u_choice, Vec2 u_light, float u_lobe, Vec2 u_dir,
-//                                  PathCounters& c) const;
+//                                  Vec2 azimuth, PathCounters& c) const;   // azimuth = turn_azimuth(u_dir.x)
 // Sampler dimensions per vertex are consumed in a fixed order whatever the variant, so stratification lines up:
 // light choice (1D), light position (2D), BSDF/strategy choice (1D), direction (2D), Russian roulette (1D).
 // The paths of a PathBatch (up to 256 neighbouring pixels) advance in lockstep, one bounce of every live lane at a
-// time: closest hits, then the sampler dimensions and (next-event variants) the light choices and light samples of
-// all lanes side by side, then shading of each lane (its next-event estimate is held as a ShadowQuery), then all of
+// time: closest hits, then the sampler dimensions, the BSDF azimuths and (next-event variants) the light choices and
+// light samples of all lanes side by side, then shading of each lane (its next-event estimate is held as a ShadowQuery), then all of
 // the bounce's shadow rays in 16-ray Embree packets. Each lane has its own sampler and state, so its estimate is the
 // one it would get alone (tests/app/test_end_to_end.cpp checks this bit for bit).
 #pragma once
 
 #include <optional>
 
+#include "core/sincos_batch.h"
 #include "integrators/integrator.h"
 
 namespace lumis {
@@ -98,8 +99,8 @@ float light_strategy_pdf(const Scene& scene, const Hit& from, const LightSampleC
 /// Density with which light sampling at ctx would produce the emitter point on_light of light `light` along dir.
 float light_pdf_for_hit(const Scene& scene, const LightSampleContext& ctx, int light, const Hit* on_light, Vec3 dir);
 
-/// BSDF-sampled continuation shared by bsdf, light and nee_mis.
-std::optional<Scatter> scatter_bsdf(const Vertex& v, float u_lobe, Vec2 u);
+/// BSDF-sampled continuation shared by bsdf, light and nee_mis; azimuth = turn_azimuth(u.x).
+std::optional<Scatter> scatter_bsdf(const Vertex& v, float u_lobe, Vec2 u, Vec2 azimuth);
 
 /// Orient and shade a hit; nullopt when it cannot scatter (pure emitter, or degenerate).
 std::optional<Vertex> make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_dir);
@@ -133,6 +134,8 @@ class PathIntegrator final : public Integrator {
     int owner[kLanes];  // lane of each shadow ray
     VertexDims dims[kLanes];
     int dim_lanes[kLanes], live_lanes[kLanes];
+    float turns[kLanes], az_sin[kLanes], az_cos[kLanes];
+    Vec2 azimuth[kLanes];  // turn_azimuth(dims[k].dir.x): the direction samplers' (cos, sin) of 2 pi u.x
     Uninitialised<LightDraw, Variant::kLightDraws ? kLanes : 1> draws;  // each lane's written before it is read
     for (int bounce = 0;; ++bounce) {
       // Closest hits of every live lane (bounce rays one by one: 16-wide packets of them measured no faster).
@@ -161,6 +164,9 @@ class PathIntegrator final : public Integrator {
           n_dims += alive[k] & found[k];
         }
       Sampler::get_vertex_batch(batch.samplers, dim_lanes, n_dims, dims);
+      for (int i = 0; i < n_dims; ++i) turns[i] = dims[dim_lanes[i]].dir.x;
+      sincos_turns_many(turns, n_dims, az_sin, az_cos);
+      for (int i = 0; i < n_dims; ++i) azimuth[dim_lanes[i]] = {az_cos[i], az_sin[i]};
       if constexpr (Variant::kLightDraws) draw_lights(scene, hits, dim_lanes, n_dims, dims, draws.data());
 
       // Shade each live lane; its next-event estimate waits in `shadow`.
@@ -169,8 +175,8 @@ class PathIntegrator final : public Integrator {
         const int k = live_lanes[i];
         bool has_shadow = false;
         alive[k] = shade(scene, bounce, rays[k], found[k], hits[k], beta[k], prev[k], batch.radiance[k], dims[k],
-                         draws[Variant::kLightDraws ? k : 0], bounce == 0 && batch.aov ? &batch.aov[k] : nullptr,
-                         shadow[n_shadow], has_shadow, counters);
+                         azimuth[k], draws[Variant::kLightDraws ? k : 0],
+                         bounce == 0 && batch.aov ? &batch.aov[k] : nullptr, shadow[n_shadow], has_shadow, counters);
         owner[n_shadow] = k;
         n_shadow += has_shadow;
       }
@@ -195,8 +201,8 @@ class PathIntegrator final : public Integrator {
   // One vertex of one lane: emission, AOV, next-event sample (when has_shadow, `shadow` holds it, its value
   // already times beta), continuation (ray, beta, prev updated). Returns whether the path goes on.
   bool shade(const Scene& scene, int bounce, Ray& ray, bool found, const Hit& hit, Color& beta, PathState& prev,
-             Color& radiance, const VertexDims& u, const LightDraw& draw, AovSample* aov, ShadowQuery& shadow,
-             bool& has_shadow, PathCounters& counters) const {
+             Color& radiance, const VertexDims& u, Vec2 azimuth, const LightDraw& draw, AovSample* aov,
+             ShadowQuery& shadow, bool& has_shadow, PathCounters& counters) const {
     if (!found) {
       if (scene.environment >= 0) {
         const Color le = scene.lights[scene.environment]->le_escaped(ray.d);
@@ -229,7 +235,7 @@ class PathIntegrator final : public Integrator {
       shadow = {q->ray, beta * q->value};
       has_shadow = true;
     }
-    const std::optional<Scatter> s = variant_.scatter(*v, u_choice, u_light, u_lobe, u_dir, counters);
+    const std::optional<Scatter> s = variant_.scatter(*v, u_choice, u_light, u_lobe, u_dir, azimuth, counters);
     if (!s || is_black(s->weight) || !is_finite(s->weight)) return false;
     beta *= s->weight;
     prev = {false, v->ctx, s->pdf_bsdf};

@@ -14,7 +14,7 @@ struct UniformVariant {
   Color emission_weight(const PathState&, const Scene&, int, const Hit*, Vec3) const { return Color(1); }
   static constexpr bool kLightDraws = false;
   std::optional<ShadowQuery> direct(const Vertex&, const LightDraw&, PathCounters&) const { return std::nullopt; }
-  std::optional<Scatter> scatter(const Vertex& v, float, Vec2, float, Vec2 u, PathCounters&) const {
+  std::optional<Scatter> scatter(const Vertex& v, float, Vec2, float, Vec2 u, Vec2, PathCounters&) const {
     Vec3 wi;
     float pdf;
     if (measure == UniformMeasure::ThetaPhi) {

@@ -35,7 +35,11 @@ struct DiffuseBsdf {
   Color f(Vec3 wo, Vec3 wi) const { return eval(wo, wi).f; }        ///< local frame, cosine excluded
   float pdf(Vec3 wo, Vec3 wi) const { return eval(wo, wi).pdf; }    ///< solid angle of wi
   BsdfEval eval(Vec3 wo, Vec3 wi) const;                             ///< local frame; f and solid-angle pdf
-  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
+  /// Local frame; wi's pdf per solid angle. u.x sets the azimuth: the 4-argument form takes turn_azimuth(u.x).
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const {
+    return sample(wo, u_lobe, u, turn_azimuth(u.x));
+  }
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u, Vec2 azimuth) const;
 };
 
 /// GGX microfacet reflection: D G2 F / (4 cos_o cos_i) with height-correlated Smith G2 and Schlick Fresnel.
@@ -46,7 +50,11 @@ struct GgxBsdf {
   Color f(Vec3 wo, Vec3 wi) const { return eval(wo, wi).f; }        ///< local frame, cosine excluded
   float pdf(Vec3 wo, Vec3 wi) const { return eval(wo, wi).pdf; }    ///< solid angle of wi
   BsdfEval eval(Vec3 wo, Vec3 wi) const;                             ///< local frame; f and solid-angle pdf
-  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
+  /// Local frame; wi's pdf per solid angle. u.x sets the azimuth: the 4-argument form takes turn_azimuth(u.x).
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const {
+    return sample(wo, u_lobe, u, turn_azimuth(u.x));
+  }
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u, Vec2 azimuth) const;
 };
 
 /// glTF metallic-roughness: Lambert lobe (albedo base (1 - metallic)) plus GGX lobe (F0 = mix(0.04, base,
@@ -59,7 +67,11 @@ struct PbrBsdf {
   Color f(Vec3 wo, Vec3 wi) const { return eval(wo, wi).f; }        ///< local frame, cosine excluded
   float pdf(Vec3 wo, Vec3 wi) const { return eval(wo, wi).pdf; }    ///< solid angle of wi
   BsdfEval eval(Vec3 wo, Vec3 wi) const;                             ///< local frame; f and solid-angle pdf
-  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const;
+  /// Local frame; wi's pdf per solid angle. u.x sets the azimuth: the 4-argument form takes turn_azimuth(u.x).
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const {
+    return sample(wo, u_lobe, u, turn_azimuth(u.x));
+  }
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u, Vec2 azimuth) const;
 };
 
 /// Minimum GGX alpha, so that near-mirror materials stay representable in float.
@@ -77,7 +89,11 @@ class Bsdf {
   float pdf(Vec3 wo, Vec3 wi) const { return std::visit([&](const auto& b) { return b.pdf(wo, wi); }, v_); }
   BsdfEval eval(Vec3 wo, Vec3 wi) const { return std::visit([&](const auto& b) { return b.eval(wo, wi); }, v_); }
   std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u) const {
-    return std::visit([&](const auto& b) { return b.sample(wo, u_lobe, u); }, v_);
+    return sample(wo, u_lobe, u, turn_azimuth(u.x));
+  }
+  /// The same with azimuth = turn_azimuth(u.x) given (a path batch computes its lanes' azimuths side by side).
+  std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u, Vec2 azimuth) const {
+    return std::visit([&](const auto& b) { return b.sample(wo, u_lobe, u, azimuth); }, v_);
   }
 
  private:

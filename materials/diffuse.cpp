@@ -14,9 +14,9 @@ BsdfEval DiffuseBsdf::eval(Vec3 wo, Vec3 wi) const {
 }
 
 /// Local frame: wi by cosine-weighted hemisphere sampling; u_lobe is unused (single lobe).
-std::optional<BsdfSample> DiffuseBsdf::sample(Vec3 wo, float /*u_lobe*/, Vec2 u) const {
+std::optional<BsdfSample> DiffuseBsdf::sample(Vec3 wo, float /*u_lobe*/, Vec2 u, Vec2 azimuth) const {
   if (!(wo.z > 0)) return std::nullopt;
-  const Vec3 wi = sample_cosine_hemisphere(u);
+  const Vec3 wi = sample_cosine_hemisphere(u, azimuth);
   const BsdfEval e = eval(wo, wi);
   if (!(e.pdf > 0)) return std::nullopt;  // u on the boundary can give wi.z == 0
   return std::make_optional<BsdfSample>(wi, e.f, e.pdf);

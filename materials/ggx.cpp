@@ -27,9 +27,9 @@ BsdfEval GgxBsdf::eval(Vec3 wo, Vec3 wi) const {
 }
 
 /// Local frame: a visible normal for wo, mirrored; fails when the mirrored direction is below the surface.
-std::optional<BsdfSample> GgxBsdf::sample(Vec3 wo, float /*u_lobe*/, Vec2 u) const {
+std::optional<BsdfSample> GgxBsdf::sample(Vec3 wo, float /*u_lobe*/, Vec2 u, Vec2 azimuth) const {
   if (!(wo.z > 0)) return std::nullopt;
-  const Vec3 wm = sample_ggx_vndf(wo, alpha, alpha, u, method);
+  const Vec3 wm = sample_ggx_vndf(wo, alpha, alpha, u, method, azimuth);
   const Vec3 wi = reflect(wo, wm);
   if (!(wi.z > 0)) return std::nullopt;
   // Evaluate through eval() so that a sample carries exactly what f() and pdf() return for (wo, wi).

@@ -31,13 +31,13 @@ BsdfEval PbrBsdf::eval(Vec3 wo, Vec3 wi) const {
 }
 
 /// Local frame: u_lobe < diffuse_probability picks the cosine lobe, otherwise visible-normal sampling.
-std::optional<BsdfSample> PbrBsdf::sample(Vec3 wo, float u_lobe, Vec2 u) const {
+std::optional<BsdfSample> PbrBsdf::sample(Vec3 wo, float u_lobe, Vec2 u, Vec2 azimuth) const {
   if (!(wo.z > 0)) return std::nullopt;
   Vec3 wi;
   if (u_lobe < diffuse_probability) {
-    wi = sample_cosine_hemisphere(u);
+    wi = sample_cosine_hemisphere(u, azimuth);
   } else {
-    wi = reflect(wo, sample_ggx_vndf(wo, specular.alpha, specular.alpha, u, specular.method));
+    wi = reflect(wo, sample_ggx_vndf(wo, specular.alpha, specular.alpha, u, specular.method, azimuth));
   }
   if (!(wi.z > 0)) return std::nullopt;
   const BsdfEval e = eval(wo, wi);

@@ -95,7 +95,7 @@ void expect_round_trip(Sample sample, Invert invert, float tol, const char* name
 TEST(Warp, InversesUndoSamples) {
   expect_round_trip(sample_uniform_theta_phi_hemisphere, invert_uniform_theta_phi_hemisphere, 2e-6f, "theta_phi");
   expect_round_trip(sample_uniform_hemisphere, invert_uniform_hemisphere, 2e-6f, "hemisphere");
-  expect_round_trip(sample_cosine_hemisphere, invert_cosine_hemisphere, 2e-6f, "cosine");
+  expect_round_trip(static_cast<Vec3 (*)(Vec2)>(sample_cosine_hemisphere), invert_cosine_hemisphere, 2e-6f, "cosine");
   expect_round_trip(sample_uniform_sphere, invert_uniform_sphere, 2e-6f, "sphere");
   for (float cos_max : {0.9f, 0.37f, -0.55f, 0.999999f})
     expect_round_trip([=](Vec2 u) { return sample_spherical_cap(u, cos_max); },
