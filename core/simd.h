@@ -1,4 +1,5 @@
-// Run-time choice of instruction set for the batch kernels (core/sampler_batch.cpp, lights/sphere_light_batch.cpp):
+// Run-time choice of instruction set for the batch kernels (core/sampler_batch.cpp, core/sincos_batch.cpp,
+// core/spherical_triangle_batch.cpp, lights/sphere_light_batch.cpp):
 // each is a plain loop over lanes compiled three times, for baseline x86-64, AVX2 and AVX-512, with the attributes
 // below; the default build runs on any x86-64 and the widest copy the CPU can run is called.
 #pragma once
