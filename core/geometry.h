@@ -114,6 +114,16 @@ inline float next_float_up(float v) {
 /// The next float toward -infinity; -infinity stays.
 inline float next_float_down(float v) { return -next_float_up(-v); }
 
+/// v moved one float up when dir > 0, down when dir < 0, kept otherwise: next_float_up / next_float_down for every
+/// non-NaN v (+0 and -0 alike), as selects instead of branches (the signs of a bounce's offsets are unpredictable).
+inline float next_float_toward(float v, float dir) {
+  const uint32_t bits = std::bit_cast<uint32_t>(v), magnitude = bits & 0x7fffffffu;
+  const bool up = dir > 0, negative = bits >> 31;
+  const uint32_t grown = magnitude == 0x7f800000u ? bits : bits + 1;  // away from zero; an infinity stays
+  const uint32_t moved = magnitude == 0 ? (up ? 1u : 0x80000001u) : up != negative ? grown : bits - 1;
+  return std::bit_cast<float>(dir > 0 || dir < 0 ? moved : bits);
+}
+
 /// Offset a point with error bound p_error off a surface along its geometric normal, to the side of direction w,
 /// by the projected error bound (pbrt-v4's scheme): relative to the coordinates, so it works at any scene scale.
 /// World space. Inline, like the two below: called per ray, and a returned Ray read back from memory stalls.
@@ -121,12 +131,9 @@ inline Vec3 offset_ray_origin(Vec3 p, Vec3 p_error, Vec3 ng, Vec3 w) {
   const float d = dot(abs(ng), p_error);
   Vec3 offset = ng * d;
   if (dot(w, ng) < 0) offset = -offset;
-  Vec3 po = p + offset;
-  for (int i = 0; i < 3; ++i) {  // round away from p so the offset is never lost to rounding
-    if (offset[i] > 0) po[i] = next_float_up(po[i]);
-    else if (offset[i] < 0) po[i] = next_float_down(po[i]);
-  }
-  return po;
+  const Vec3 po = p + offset;
+  // Rounded away from p so that the offset is never lost to rounding.
+  return {next_float_toward(po.x, offset.x), next_float_toward(po.y, offset.y), next_float_toward(po.z, offset.z)};
 }
 /// Ray from surface point `from` toward unit world direction w.
 inline Ray spawn_ray(const Hit& from, Vec3 w) {

@@ -1,10 +1,13 @@
 // Geometry's ray queries: the 16-ray packet queries (camera rays, shadow rays) and the batched one-by-one query
 // (bounce rays) against the single-ray ones, on a scene with a triangle mesh and spheres (hits, misses, partial
-// packets, inactive lanes, an invalid ray), and alpha-masked surfaces under both.
+// packets, inactive lanes, an invalid ray), and alpha-masked surfaces under both; the branch-free rounding of ray
+// origins against next_float_up / next_float_down.
 // Deterministic: no statistics.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "core/geometry.h"
 #include "core/rng.h"
@@ -35,6 +38,26 @@ void expect_same_hit(const Hit& a, const Hit& b, int lane) {
   EXPECT_EQ(a.front, b.front) << lane;
   EXPECT_EQ(a.material, b.material) << lane;
   EXPECT_EQ(a.light, b.light) << lane;
+}
+
+// offset_ray_origin rounds each coordinate one float away from the surface with next_float_toward, which must be
+// next_float_up / next_float_down exactly: on every special value (zeros, denormals, the largest finite floats,
+// infinities) and on random bit patterns of every exponent, for both directions and for none.
+TEST(Geometry, NextFloatTowardIsNextFloatUpOrDown) {
+  const auto check = [](float v) {
+    if (std::isnan(v)) return;
+    for (const float dir : {1.0f, -1.0f, 0.0f, -0.0f, 1e-30f, -INFINITY}) {
+      const float expect = dir > 0 ? next_float_up(v) : dir < 0 ? next_float_down(v) : v;
+      ASSERT_EQ(std::bit_cast<uint32_t>(next_float_toward(v, dir)), std::bit_cast<uint32_t>(expect))
+          << "v = " << v << " (bits " << std::bit_cast<uint32_t>(v) << "), dir = " << dir;
+    }
+  };
+  for (const uint32_t bits : {0x00000000u, 0x80000000u, 0x00000001u, 0x80000001u, 0x007fffffu, 0x807fffffu,
+                              0x00800000u, 0x80800000u, 0x3f800000u, 0xbf800000u, 0x7f7fffffu, 0xff7fffffu,
+                              0x7f800000u, 0xff800000u})
+    check(std::bit_cast<float>(bits));
+  Pcg32 rng(5, 9);
+  for (int i = 0; i < 1'000'000; ++i) check(std::bit_cast<float>(rng.next_u32()));
 }
 
 TEST(Geometry, PacketQueryMatchesSingleRays) {
