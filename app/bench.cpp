@@ -79,7 +79,8 @@ std::string cpu_model() {
 // One render of scene.settings.integrator: wall and CPU time, rays by kind (the counts are the same every time: the
 // random numbers depend only on pixel, sample index and seed). With logs, every query is recorded (not timed).
 BenchVariantResult render_once(const Scene& scene, int threads, bool camera_packets = true,
-                               bool shadow_packets = true, std::vector<QueryLog>* logs = nullptr) {
+                               bool shadow_packets = true, bool bounce_packets = true,
+                               std::vector<QueryLog>* logs = nullptr) {
   const std::unique_ptr<Integrator> integrator = make_integrator(scene.settings);
   Film film(scene.settings.width, scene.settings.height, FilmOptions{false, false, false, false});
   RenderOptions ro;
@@ -87,6 +88,7 @@ BenchVariantResult render_once(const Scene& scene, int threads, bool camera_pack
   ro.threads = threads;
   ro.camera_packets = camera_packets;
   ro.shadow_packets = shadow_packets;
+  ro.bounce_packets = bounce_packets;
   ro.query_logs = logs;
   const double c0 = process_cpu_seconds();
   const RenderStats st = render(scene, *integrator, film, ro);
@@ -213,7 +215,7 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   res.scaling_integrator = o.overrides.integrator ? *o.overrides.integrator : "nee_mis";
   const size_t rays = o.raw_rays ? o.raw_rays : (o.quick ? size_t(1) << 12 : size_t(1) << 19);
   std::vector<std::vector<BenchVariantResult>> runs(variants.size());
-  std::vector<BenchVariantResult> single, no_camera_packets, no_shadow_packets;
+  std::vector<BenchVariantResult> single, no_camera_packets, no_shadow_packets, no_bounce_packets;
   std::vector<RawThroughput> raws;
   std::unique_ptr<RawBench> raw;
   // Each variant's queries, recorded once (an extra render, not timed) and replayed in every repetition.
@@ -228,8 +230,9 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
     }
     s.integrator = res.scaling_integrator;
     single.push_back(render_once(*scene, 1));
-    no_camera_packets.push_back(render_once(*scene, threads, /*camera_packets=*/false, true));
-    no_shadow_packets.push_back(render_once(*scene, threads, true, /*shadow_packets=*/false));
+    no_camera_packets.push_back(render_once(*scene, threads, /*camera_packets=*/false, true, true));
+    no_shadow_packets.push_back(render_once(*scene, threads, true, /*shadow_packets=*/false, true));
+    no_bounce_packets.push_back(render_once(*scene, threads, true, true, /*bounce_packets=*/false));
     if (r == 0) {  // the peak of loading and rendering, before the raw benchmark's ray buffers exist
       res.peak_rss = proc_status_bytes("VmHWM");
       raw = std::make_unique<RawBench>(*scene, s.width, s.height, threads, rays, o.quick ? 0.0 : 0.1);
@@ -240,7 +243,7 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
         const double per_spp = double(runs[i][0].rays) / std::max(1u, spp);
         s.spp = uint32_t(std::clamp(std::floor(double(kMaxLoggedRays) / std::max(per_spp, 1.0)), 1.0, double(spp)));
         s.integrator = variants[i];
-        render_once(*scene, threads, true, true, &logs[i]);
+        render_once(*scene, threads, true, true, true, &logs[i]);
       }
       s.spp = spp;
     }
@@ -279,6 +282,7 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   };
   res.camera_packets = packet_gain(no_camera_packets);
   res.shadow_packets = packet_gain(no_shadow_packets);
+  res.bounce_packets = packet_gain(no_bounce_packets);
   res.cpu_utilisation = median(utilisation);
   res.cpu_efficiency = median(cpu_eff);
   if (res.triangles >= 10000 && res.peak_rss > res.baseline_rss)

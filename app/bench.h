@@ -139,11 +139,11 @@ struct SceneResult {
   /// shared machine cannot hide (wall-clock speedup needs idle cores).
   double cpu_efficiency = 0;
   /// The scaling integrator, `threads` threads, with one kind of packet query turned off (camera rays:
-  /// RenderOptions::camera_packets; shadow rays: shadow_packets): samples/s, and the default renders' samples per
-  /// CPU-second over these (the packets' gain, median of paired runs).
+  /// RenderOptions::camera_packets; shadow rays: shadow_packets; bounce rays: bounce_packets): samples/s, and the
+  /// default renders' samples per CPU-second over these (the packets' gain, median of paired runs).
   struct PacketGain {
     double samples_per_s_without = 0, speedup_cpu = 0;
-  } camera_packets, shadow_packets;
+  } camera_packets, shadow_packets, bounce_packets;
 };
 
 struct BenchReport {

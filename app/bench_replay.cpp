@@ -13,12 +13,12 @@ namespace lumis {
 
 namespace {
 
-// A 16-wide packet of rays[0..n) as Geometry::intersect16 / occluded16 build it (invalid and unused lanes masked
-// off, with a finite ray); returns the number of hits (occluded rays).
-size_t trace_packet(RTCScene scene, const Ray* rays, int n, bool occlusion) {
+// A 16-wide packet of rays[0..n) as Geometry::intersect16 / intersect_each / occluded16 build it (invalid and
+// unused lanes masked off, with a finite ray); returns the number of hits (occluded rays).
+size_t trace_packet(RTCScene scene, const Ray* rays, int n, bool occlusion, bool coherent) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  if (!occlusion) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // camera packets, as intersect16
+  if (coherent) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // camera packets, as intersect16
   alignas(64) RTCRayHit16 p;
   alignas(64) int valid[16];
   to_embree16(rays, n, p, valid);
@@ -54,8 +54,9 @@ size_t replay_log(const Geometry& g, const QueryLog& log, bool single_rays) {
   for (const QueryLog::Entry& e : log.calls) {
     const Ray* r = &log.rays[e.first];
     const bool occlusion = e.call == Call::Occluded1 || e.call == Call::Occluded16;
-    if (!single_rays && (e.call == Call::Intersect16 || e.call == Call::Occluded16)) {
-      count += trace_packet(scene, r, e.n, occlusion);
+    if (!single_rays && (e.call == Call::Intersect16 || e.call == Call::Intersect16Incoherent ||
+                         e.call == Call::Occluded16)) {
+      count += trace_packet(scene, r, e.n, occlusion, e.call == Call::Intersect16);
     } else if (e.call == Call::LightHits) {
       for (int i = 0; i < e.n; ++i) count += g.all_light_hits(r[i], light_hits, 64) > 0;
     } else {

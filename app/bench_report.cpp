@@ -131,17 +131,18 @@ void print_bench_report(const BenchReport& r) {
   std::printf("(cpu share: CPU seconds / (wall seconds x threads) of the N-thread render; cpu eff: samples per "
               "CPU-second, N threads over 1)\n");
 
-  std::printf("\n%-28s %-8s %12s %18s %8s %18s %8s\n", "16-ray packets", "variant", "default", "camera 1 by 1",
-              "speedup", "shadow 1 by 1", "speedup");
+  std::printf("\n%-28s %-8s %12s %14s %8s %14s %8s %14s %8s\n", "16-ray packets", "variant", "default",
+              "camera 1 by 1", "speedup", "shadow 1 by 1", "speedup", "bounce 1 by 1", "speedup");
   for (const SceneResult& s : r.scenes) {
     if (!s.error.empty()) continue;
-    std::printf("%-28s %-8s %12s %18s %8.3f %18s %8.3f\n", s.name.c_str(), s.scaling_integrator.c_str(),
+    std::printf("%-28s %-8s %12s %14s %8.3f %14s %8.3f %14s %8.3f\n", s.name.c_str(), s.scaling_integrator.c_str(),
                 count(s.samples_per_s_n).c_str(), count(s.camera_packets.samples_per_s_without).c_str(),
                 s.camera_packets.speedup_cpu, count(s.shadow_packets.samples_per_s_without).c_str(),
-                s.shadow_packets.speedup_cpu);
+                s.shadow_packets.speedup_cpu, count(s.bounce_packets.samples_per_s_without).c_str(),
+                s.bounce_packets.speedup_cpu);
   }
-  std::printf("(samples/s, N threads; default: camera and shadow rays in packets; speedup: CPU seconds with that "
-              "kind one by one over CPU seconds of the default, median of the paired runs)\n");
+  std::printf("(samples/s, N threads; default: camera, shadow and bounce rays in packets; speedup: CPU seconds with "
+              "that kind one by one over CPU seconds of the default, median of the paired runs)\n");
 
   std::printf("\nTargets (reported, not enforced):\n");
   for (const Target& t : targets(r))
@@ -218,7 +219,8 @@ std::string bench_report_json(const BenchReport& r) {
                            {"efficiency", efficiency(s)},
                            {"cpu_utilisation", s.cpu_utilisation},
                            {"cpu_efficiency", s.cpu_efficiency}};
-    for (const auto& [key, g] : {std::pair{"camera_packets", s.camera_packets}, {"shadow_packets", s.shadow_packets}})
+    for (const auto& [key, g] : {std::pair{"camera_packets", s.camera_packets}, {"shadow_packets", s.shadow_packets},
+                                 {"bounce_packets", s.bounce_packets}})
       j[key] = {{"integrator", s.scaling_integrator},
                 {"samples_per_s_packets", s.samples_per_s_n},
                 {"samples_per_s_single_rays", g.samples_per_s_without},

@@ -242,13 +242,15 @@ bool Geometry::intersect(const Ray& ray, Hit& hit) const {
   return true;
 }
 
-void Geometry::intersect_each(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found) const {
+void Geometry::intersect_each(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found,
+                              bool packets) const {
   // In chunks of 16 listed lanes: every ray of a chunk is traced before its hit records are filled.
   for (int first = 0; first < m; first += 16)
-    intersect_each16(rays, lanes + first, std::min(16, m - first), hits, found);
+    intersect_each16(rays, lanes + first, std::min(16, m - first), hits, found, packets);
 }
 
-void Geometry::intersect_each16(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found) const {
+void Geometry::intersect_each16(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found,
+                                bool packets) const {
   struct EmbreeHit {
     uint32_t geom_id, prim_id;
     float u, v, t;
@@ -257,25 +259,41 @@ void Geometry::intersect_each16(const Ray* rays, const int* lanes, int m, Hit* h
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   QueryLog* const log = t_query_log;
-  for (int i = 0; i < m; ++i) {
-    const Ray& ray = rays[lanes[i]];
-    got[i] = false;
-    if (!ray_is_valid(ray)) continue;
-    if (log) [[unlikely]] log->add(QueryLog::Call::Intersect1, &ray, 1);
-    RTCRayHit rh = to_embree(ray);
-    rtcIntersect1(impl_->scene, &ctx, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-    got[i] = true;
-    raw[i] = {rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar};
-    const Impl::Slot& slot = impl_->slots[rh.hit.geomID];
-    if (slot.is_mesh) {  // the corner record (36 bytes: up to two cache lines) and the triangle's indices
-      const Vec3* corner = &impl_->corners[slot.index][3 * size_t(rh.hit.primID)];
-      __builtin_prefetch(corner);
-      __builtin_prefetch(reinterpret_cast<const char*>(corner) + 35);
-      const TriangleMesh& mesh = impl_->meshes[slot.index];
-      if (!mesh.normals.empty() || !mesh.uv0.empty()) __builtin_prefetch(&mesh.indices[3 * size_t(rh.hit.primID)]);
+  if (packets && m > 1) {  // one incoherent packet (the default context flag); a lone ray goes alone, below
+    alignas(64) RTCRayHit16 p;
+    alignas(64) int valid[16];
+    for (int i = 0; i < 16; ++i) {
+      const bool ok = i < m && ray_is_valid(rays[lanes[i]]);
+      valid[i] = ok ? -1 : 0;
+      to_embree16(ok ? rays[lanes[i]] : Ray{{0, 0, 0}, {0, 0, 1}, 0, 0}, p, i);
+    }
+    if (log) [[unlikely]] {
+      Ray packet[16];
+      for (int i = 0; i < m; ++i) packet[i] = rays[lanes[i]];
+      log->add(QueryLog::Call::Intersect16Incoherent, packet, m);
+    }
+    rtcIntersect16(valid, impl_->scene, &ctx, &p);
+    for (int i = 0; i < m; ++i) {
+      got[i] = valid[i] && p.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+      if (got[i]) raw[i] = {p.hit.geomID[i], p.hit.primID[i], p.hit.u[i], p.hit.v[i], p.ray.tfar[i]};
+    }
+  } else {
+    for (int i = 0; i < m; ++i) {
+      const Ray& ray = rays[lanes[i]];
+      got[i] = false;
+      if (!ray_is_valid(ray)) continue;
+      if (log) [[unlikely]] log->add(QueryLog::Call::Intersect1, &ray, 1);
+      RTCRayHit rh = to_embree(ray);
+      rtcIntersect1(impl_->scene, &ctx, &rh);
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+      got[i] = true;
+      raw[i] = {rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar};
+      prefetch_hit_record(raw[i].geom_id, raw[i].prim_id);  // as soon as the ray is traced
     }
   }
+  if (packets && m > 1)
+    for (int i = 0; i < m; ++i)
+      if (got[i]) prefetch_hit_record(raw[i].geom_id, raw[i].prim_id);
   for (int i = 0; i < m; ++i) {
     const int k = lanes[i];
     found[k] = got[i];
@@ -286,6 +304,17 @@ void Geometry::intersect_each16(const Ray* rays, const int* lanes, int m, Hit* h
     fill_hit(raw[i].geom_id, raw[i].prim_id, raw[i].u, raw[i].v, hit);
     hit.front = dot(rays[k].d, hit.ng) < 0;
   }
+}
+
+void Geometry::prefetch_hit_record(uint32_t geom_id, uint32_t prim_id) const {
+  const Impl::Slot& slot = impl_->slots[geom_id];
+  if (!slot.is_mesh) return;
+  // The corner record (36 bytes: up to two cache lines) and, when fill_hit reads attributes, the triangle's indices.
+  const Vec3* corner = &impl_->corners[slot.index][3 * size_t(prim_id)];
+  __builtin_prefetch(corner);
+  __builtin_prefetch(reinterpret_cast<const char*>(corner) + 35);
+  const TriangleMesh& mesh = impl_->meshes[slot.index];
+  if (!mesh.normals.empty() || !mesh.uv0.empty()) __builtin_prefetch(&mesh.indices[3 * size_t(prim_id)]);
 }
 
 void Geometry::intersect16(const Ray* rays, int n, Hit* hits, bool* found) const {

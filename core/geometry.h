@@ -43,6 +43,7 @@ struct QueryLog {
     Occluded1,    ///< rtcOccluded1 (occluded)
     Occluded16,   ///< one rtcOccluded16 packet (occluded16)
     LightHits,    ///< all_light_hits on each ray
+    Intersect16Incoherent,  ///< one rtcIntersect16 packet without the coherent flag (intersect_each, packets)
   };
   struct Entry {
     Call call;
@@ -182,10 +183,12 @@ class Geometry {
   /// Closest hits of up to 16 coherent rays (camera rays) in one Embree packet query: found[i] and hits[i] as
   /// intersect(rays[i], hits[i]) would give, for i < n (an invalid ray is a miss).
   void intersect16(const Ray* rays, int n, Hit* hits, bool* found) const;
-  /// found[k] = intersect(rays[k], hits[k]) for every lane k = lanes[i], i < m, the same results bit for bit (other
-  /// lanes' found and hits untouched); in chunks of 16 lanes, all rays of a chunk are traced before any of its hit
-  /// records is read, so that the records' memory loads (prefetched) overlap instead of each stalling its ray.
-  void intersect_each(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found) const;
+  /// found[k] = intersect(rays[k], hits[k]) for every lane k = lanes[i], i < m (other lanes' found and hits
+  /// untouched); in chunks of 16 lanes, all rays of a chunk are traced before any of its hit records is read, so
+  /// that the records' memory loads (prefetched) overlap instead of each stalling its ray. packets = false: one
+  /// rtcIntersect1 per ray, the same results bit for bit; true: each chunk of two or more rays as one incoherent
+  /// rtcIntersect16 packet, the same hits with t rounded as Embree's packet kernels round it (the last bits).
+  void intersect_each(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found, bool packets = false) const;
   /// Whether anything lies in (ray.tmin, ray.tmax).
   bool occluded(const Ray& ray) const;
   /// occluded(rays[i]) for i < n (n <= 16) in one Embree packet query (shadow rays of neighbouring paths).
@@ -209,8 +212,10 @@ class Geometry {
   static void record_queries(QueryLog* log);
 
  private:
+  /// Start loading what fill_hit will read for a hit on (geom_id, prim_id).
+  void prefetch_hit_record(uint32_t geom_id, uint32_t prim_id) const;
   /// intersect_each for one chunk (m <= 16).
-  void intersect_each16(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found) const;
+  void intersect_each16(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found, bool packets) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -33,6 +33,8 @@ struct PathBatch {
   AovSample* aov = nullptr;              ///< per lane first-hit data (may be null)
   Color* radiance = nullptr;             ///< out: per lane radiance estimate
   bool shadow_packets = true;            ///< trace a bounce's shadow rays in 16-wide queries (false: one by one)
+  bool bounce_packets = false;           ///< trace bounce rays (after the camera rays) in 16-wide incoherent
+                                         ///< queries (false: one by one, the results of a path traced alone)
 };
 
 class Integrator {

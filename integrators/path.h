@@ -10,10 +10,11 @@
 // Sampler dimensions per vertex are consumed in a fixed order whatever the variant, so stratification lines up:
 // light choice (1D), light position (2D), BSDF/strategy choice (1D), direction (2D), Russian roulette (1D).
 // The paths of a PathBatch (up to 256 neighbouring pixels) advance in lockstep, one bounce of every live lane at a
-// time: closest hits, then the sampler dimensions, the BSDF azimuths and (next-event variants) the light choices and
-// light samples of all lanes side by side, then shading of each lane (its next-event estimate is held as a ShadowQuery), then all of
-// the bounce's shadow rays in 16-ray Embree packets. Each lane has its own sampler and state, so its estimate is the
-// one it would get alone (tests/app/test_end_to_end.cpp checks this bit for bit).
+// time: closest hits (in 16-ray packets), then the sampler dimensions, the BSDF azimuths and (next-event variants)
+// the light choices and light samples of all lanes side by side, then shading of each lane (its next-event estimate
+// is held as a ShadowQuery), then all of the bounce's shadow rays in 16-ray Embree packets. Each lane has its own
+// sampler and state, so its estimate is the one it would get alone (tests/app/test_end_to_end.cpp checks this bit
+// for bit with the packets off; Embree's packet kernels round hit distances differently in the last bits).
 #pragma once
 
 #include <optional>
@@ -138,7 +139,7 @@ class PathIntegrator final : public Integrator {
     Vec2 azimuth[kLanes];  // turn_azimuth(dims[k].dir.x): the direction samplers' (cos, sin) of 2 pi u.x
     Uninitialised<LightDraw, Variant::kLightDraws ? kLanes : 1> draws;  // each lane's written before it is read
     for (int bounce = 0;; ++bounce) {
-      // Closest hits of every live lane (bounce rays one by one: 16-wide packets of them measured no faster).
+      // Closest hits of every live lane (bounce rays in incoherent 16-wide packets unless the batch says not).
       int live = 0;
       for (int k = 0; k < n; ++k) {  // the live lanes listed without a branch (which paths ended is unpredictable)
         live_lanes[live] = k;
@@ -152,7 +153,7 @@ class PathIntegrator final : public Integrator {
           if (found[k]) hits[k] = *batch.primary[k];
         }
       } else {
-        scene.geometry.intersect_each(rays, live_lanes, live, hits, found);
+        scene.geometry.intersect_each(rays, live_lanes, live, hits, found, batch.bounce_packets);
       }
 
       // The sampler dimensions of every lane that may scatter here, side by side (a lane that then cannot

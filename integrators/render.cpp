@@ -78,6 +78,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
         batch.aov = film.has_aovs() ? aov : nullptr;  // first-hit albedo costs a material lookup per sample
         batch.radiance = radiance;
         batch.shadow_packets = options.shadow_packets;
+        batch.bounce_packets = options.bounce_packets;
         for (int tile = r.begin(); tile < r.end(); ++tile) {
           const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
           const int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);

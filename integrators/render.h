@@ -27,6 +27,7 @@ struct RenderOptions {
   int threads = 0;                        ///< 0 = all cores
   bool camera_packets = true;             ///< trace camera rays in 4x4-pixel packets of 16 (false: one by one)
   bool shadow_packets = true;             ///< trace each bounce's shadow rays of a tile in 16-ray packets
+  bool bounce_packets = true;             ///< trace each bounce's closest-hit rays of a tile in 16-ray packets
   const std::atomic<bool>* cancel = nullptr;
   /// When set (lumis bench): cleared, then one QueryLog per tile (row-major) records every ray query of the render.
   std::vector<QueryLog>* query_logs = nullptr;

@@ -48,6 +48,8 @@ for s in doc["scenes"]:
     assert mis["rays_by_kind"]["light_query"] > 0 and mis["rays_by_kind"]["shadow"] == 0
     ts = s["thread_scaling"]
     assert ts["integrator"] == "nee_mis" and ts["samples_per_s_1"] > 0 and ts["speedup"] > 0
+    for k in ("camera_packets", "shadow_packets", "bounce_packets"):
+        assert s[k]["samples_per_s_single_rays"] > 0 and s[k]["speedup_cpu"] > 0, (s["name"], k, s[k])
 large = doc["scenes"][0]
 assert large["triangles"] >= 20000 and large["generate_seconds"] > 0
 assert large["raw_rays_per_s"]["bounce_hit_fraction"] > 0.99, "the generated room must be closed"
