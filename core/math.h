@@ -59,6 +59,13 @@ constexpr Vec3 cross(Vec3 a, Vec3 b) {
 inline float length_squared(Vec3 a) { return dot(a, a); }
 inline float length(Vec3 a) { return std::sqrt(dot(a, a)); }
 inline Vec3 normalize(Vec3 a) { return a / length(a); }
+/// a itself when it is unit to float precision (|a|^2 within 4e-7 of 1: a few ulps, as a normalised vector or a
+/// direction turned by an orthonormal frame comes out), else normalize(a): no square root or division on the
+/// common path.
+inline Vec3 normalize_unless_unit(Vec3 a) {
+  const float l2 = dot(a, a);
+  return std::abs(l2 - 1) <= 4e-7f ? a : a / std::sqrt(l2);
+}
 inline Vec3 abs(Vec3 a) { return {std::abs(a.x), std::abs(a.y), std::abs(a.z)}; }
 inline Vec3 min(Vec3 a, Vec3 b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
 inline Vec3 max(Vec3 a, Vec3 b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }

@@ -19,7 +19,7 @@ std::optional<Vertex> make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_d
   Frame frame = sp.frame;
   const Vec3 ng = facing_ng(hit);
   if (!hit.front) frame = Frame(frame.s, -frame.t, -frame.n);  // two-sided shading: the surface faces the ray
-  const Vec3 wo_world = -normalize(ray_dir);
+  const Vec3 wo_world = -normalize_unless_unit(ray_dir);  // bounce rays' directions are unit already
   Vec3 wo = frame.to_local(wo_world);
   // Shading-normal rule: when the shading normal puts the viewer below the surface although the geometry faces
   // it, shade with the geometric normal (no black faces).
