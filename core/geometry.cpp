@@ -49,6 +49,18 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
 }
 
 
+/// Unit normal of triangle (p0, p1, p2), normalize(cross(p1 - p0, p2 - p0)), at any scale: far outside unit scale
+/// the cross product is rescaled (huge triangles, edges beyond ~1e8 units, overflow |c|^2); `tiny` is set when
+/// |c|^2 < 1e-30 (edges below ~3e-8 units, as in a scene scaled by 1e-9). A degenerate triangle gets +z.
+Vec3 face_normal(Vec3 p0, Vec3 p1, Vec3 p2, bool& tiny) {
+  const Vec3 c = cross(p1 - p0, p2 - p0);
+  const float c2 = length_squared(c);
+  if (c2 >= 1e-30f && c2 <= 1e30f) [[likely]] return c / std::sqrt(c2);
+  tiny = !(c2 >= 1e-30f);
+  const Vec3 ng = robust_normalize(c);
+  return ng == Vec3{} ? Vec3{0, 0, 1} : ng;
+}
+
 void embree_error(void*, RTCError code, const char* str) {
   std::fprintf(stderr, "lumis: embree error %d: %s\n", static_cast<int>(code), str ? str : "");
 }
@@ -61,12 +73,17 @@ struct Geometry::Impl {
   RTCScene light_scene = nullptr;  // light geometry only, for all_light_hits
   // deque: element addresses stay stable, Embree shares the vertex and index arrays.
   std::deque<TriangleMesh> meshes;
-  // Per mesh, the three corners of every triangle in order (36 bytes per triangle): fill_hit reads one record
-  // instead of an index and then three vertices (two dependent cache misses on large meshes).
-  std::deque<std::vector<Vec3>> corners;
+  // Per mesh, the three corners of every triangle in order and its unit geometric normal (48 bytes per
+  // triangle): fill_hit reads one record instead of an index and then three vertices (two dependent cache misses
+  // on large meshes), and no normal is computed per hit.
+  struct TriangleRecord {
+    Vec3 p0, p1, p2, ng;
+  };
+  std::deque<std::vector<TriangleRecord>> records;
   std::deque<Sphere> spheres;
   struct Slot {
     bool is_mesh;
+    bool has_tiny;  // a mesh with a triangle below float's range for |cross|^2 (fill_hit's special case)
     size_t index;
   };
   std::vector<Slot> slots;  // by geometry id
@@ -94,8 +111,16 @@ Geometry::~Geometry() {
 
 uint32_t Geometry::add_mesh(TriangleMesh mesh) {
   auto& m = impl_->meshes.emplace_back(std::move(mesh));
-  std::vector<Vec3>& corners = impl_->corners.emplace_back(m.indices.size());
-  for (size_t i = 0; i < m.indices.size(); ++i) corners[i] = m.positions[m.indices[i]];
+  std::vector<Impl::TriangleRecord>& records = impl_->records.emplace_back(m.triangle_count());
+  bool has_tiny = false;
+  for (size_t i = 0; i < records.size(); ++i) {
+    Impl::TriangleRecord& r = records[i];
+    r.p0 = m.positions[m.indices[3 * i]], r.p1 = m.positions[m.indices[3 * i + 1]];
+    r.p2 = m.positions[m.indices[3 * i + 2]];
+    bool tiny = false;
+    r.ng = face_normal(r.p0, r.p1, r.p2, tiny);
+    has_tiny |= tiny;
+  }
   // Embree reads vertex arrays 16 bytes at a time: one spare element keeps the last read in bounds.
   m.positions.reserve(m.positions.size() + 1);
   m.positions.emplace_back();
@@ -115,7 +140,7 @@ uint32_t Geometry::add_mesh(TriangleMesh mesh) {
   if (m.light >= 0) rtcAttachGeometryByID(impl_->light_scene, g, id);
   rtcReleaseGeometry(g);
   if (id >= impl_->slots.size()) impl_->slots.resize(id + 1);
-  impl_->slots[id] = {true, impl_->meshes.size() - 1};
+  impl_->slots[id] = {true, has_tiny, impl_->meshes.size() - 1};
   impl_->triangles += m.triangle_count();
   for (const Vec3& p : m.positions) impl_->bounds.expand(p);
   return id;
@@ -135,7 +160,7 @@ uint32_t Geometry::add_sphere(Sphere sphere) {
   if (s.light >= 0) rtcAttachGeometryByID(impl_->light_scene, g, id);
   rtcReleaseGeometry(g);
   if (id >= impl_->slots.size()) impl_->slots.resize(id + 1);
-  impl_->slots[id] = {false, impl_->spheres.size() - 1};
+  impl_->slots[id] = {false, false, impl_->spheres.size() - 1};
   impl_->bounds.expand(s.center - Vec3(s.radius));
   impl_->bounds.expand(s.center + Vec3(s.radius));
   return id;
@@ -173,24 +198,18 @@ void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, 
     return;
   }
   const TriangleMesh& m = impl_->meshes[slot.index];
-  const Vec3* corner = &impl_->corners[slot.index][3 * size_t(prim_id)];
-  const Vec3 p0 = corner[0], p1 = corner[1], p2 = corner[2];
-  const Vec3 c = cross(p1 - p0, p2 - p0);
-  const float c2 = length_squared(c);
-  Vec3 ng;
-  if (c2 >= 1e-30f && c2 <= 1e30f) [[likely]] {
-    ng = c / std::sqrt(c2);
-  } else {
-    // Far outside unit scale. Tiny triangles (|c| below ~1e-15: edges below ~3e-8 units, as in a scene scaled by
-    // 1e-9): Embree's barycentrics come out wrong while t stays right (measured; most likely its reciprocal of a
-    // triple product of about |c| |cos|, which clamps inputs below 1e-18), so they are recomputed from the hit
-    // point o + t d. Huge ones (edges beyond ~1e8 units): |c|^2 overflows, so c is normalised by rescaling.
-    if (!(c2 >= 1e-30f)) {
+  const Impl::TriangleRecord& record = impl_->records[slot.index][prim_id];
+  const Vec3 p0 = record.p0, p1 = record.p1, p2 = record.p2, ng = record.ng;
+  if (slot.has_tiny) [[unlikely]] {
+    // Tiny triangles (see face_normal): Embree's barycentrics come out wrong while t stays right (measured; most
+    // likely its reciprocal of a triple product of about |c| |cos|, which clamps inputs below 1e-18), so they are
+    // recomputed from the hit point o + t d.
+    bool tiny = false;
+    face_normal(p0, p1, p2, tiny);
+    if (tiny) {
       const Vec2 b = triangle_barycentrics(hit.p, p0, p1, p2);
       b1 = b.x, b2 = b.y;
     }
-    ng = robust_normalize(c);
-    if (ng == Vec3{}) ng = {0, 0, 1};
   }
   const float b0 = 1 - b1 - b2;
   hit.p = p0 * b0 + p1 * b1 + p2 * b2;
@@ -309,10 +328,10 @@ void Geometry::intersect_each16(const Ray* rays, const int* lanes, int m, Hit* h
 void Geometry::prefetch_hit_record(uint32_t geom_id, uint32_t prim_id) const {
   const Impl::Slot& slot = impl_->slots[geom_id];
   if (!slot.is_mesh) return;
-  // The corner record (36 bytes: up to two cache lines) and, when fill_hit reads attributes, the triangle's indices.
-  const Vec3* corner = &impl_->corners[slot.index][3 * size_t(prim_id)];
-  __builtin_prefetch(corner);
-  __builtin_prefetch(reinterpret_cast<const char*>(corner) + 35);
+  // The triangle record (48 bytes: up to two cache lines) and, when fill_hit reads attributes, the triangle's indices.
+  const Impl::TriangleRecord* record = &impl_->records[slot.index][prim_id];
+  __builtin_prefetch(record);
+  __builtin_prefetch(reinterpret_cast<const char*>(record) + sizeof(Impl::TriangleRecord) - 1);
   const TriangleMesh& mesh = impl_->meshes[slot.index];
   if (!mesh.normals.empty() || !mesh.uv0.empty()) __builtin_prefetch(&mesh.indices[3 * size_t(prim_id)]);
 }

@@ -41,6 +41,30 @@ void expect_same_hit(const Hit& a, const Hit& b, int lane) {
   EXPECT_EQ(a.light, b.light) << lane;
 }
 
+// Each hit names its own shape: straight down onto each sphere of build_scene and onto the quad beside them, the
+// hit carries that shape's material, light, normal and a point on its surface (a wrong per-geometry record, such as
+// every sphere reading the first sphere's, fails it).
+TEST(Geometry, HitsCarryTheirShapesRecord) {
+  Geometry g;
+  build_scene(g);
+  struct Case {
+    Vec3 above;
+    int material, light;
+    Vec3 center;  // the sphere's (radius r), or the quad's point below
+    float r;
+  };
+  for (const Case& c : {Case{{0.5f, 0.2f, 3}, 1, -1, {0.5f, 0.2f, 1}, 0.4f},
+                        Case{{-0.8f, -0.5f, 3}, -1, 0, {-0.8f, -0.5f, 0.5f}, 0.3f},
+                        Case{{1.5f, -1.5f, 3}, 3, -1, {1.5f, -1.5f, 0}, 0.0f}}) {
+    Hit h;
+    ASSERT_TRUE(g.intersect({c.above, {0, 0, -1}, 0, INFINITY}, h)) << c.material;
+    EXPECT_EQ(h.material, c.material);
+    EXPECT_EQ(h.light, c.light) << c.material;
+    EXPECT_NEAR(h.p.z, c.center.z + c.r, 1e-5f) << c.material;
+    EXPECT_NEAR(h.ng.z, 1.0f, 1e-6f) << c.material;
+  }
+}
+
 // offset_ray_origin rounds each coordinate one float away from the surface with next_float_toward, which must be
 // next_float_up / next_float_down exactly: on every special value (zeros, denormals, the largest finite floats,
 // infinities) and on random bit patterns of every exponent, for both directions and for none.
