@@ -28,11 +28,9 @@ Vec4 sample_texture(const Texture& texture, const Hit& hit) {
 /// World frame around hit.ns; its s axis follows the mesh tangent when there is one, so normal maps line up.
 Frame base_shading_frame(const Hit& hit) {
   const float l2 = length_squared(hit.ns);  // the fallback is normalised only when needed
-  // Geometry gives unit normals (|l2 - 1| within a few float ulps): used as they are, without a square root and a
-  // division on every vertex's critical path. Anything else is normalised, or replaced when it has no length.
-  const Vec3 n = std::abs(l2 - 1) <= 4e-7f ? hit.ns
-                 : l2 > 1e-20f && std::isfinite(l2) ? hit.ns / std::sqrt(l2)
-                                                    : unit_or(hit.ng, {0, 0, 1});
+  // Geometry gives unit normals: used as they are (normalize_unless_unit), without a square root and a division on
+  // every vertex's critical path. Anything else is normalised, or replaced when it has no length.
+  const Vec3 n = l2 > 1e-20f && std::isfinite(l2) ? normalize_unless_unit(hit.ns) : unit_or(hit.ng, {0, 0, 1});
   const Vec3 tangent{hit.tangent.x, hit.tangent.y, hit.tangent.z};
   if (length_squared(tangent) > 0) return Frame::from_normal_tangent(n, tangent);
   return Frame::from_normal(n);
