@@ -61,6 +61,17 @@ Vec3 face_normal(Vec3 p0, Vec3 p1, Vec3 p2, bool& tiny) {
   return ng == Vec3{} ? Vec3{0, 0, 1} : ng;
 }
 
+/// Start loading the cache line that holds p: a hint, no effect on any value. Inline assembly on x86-64 because
+/// GCC 12 dropped every __builtin_prefetch from the link-time-optimised lumis binary (none was left in it, while
+/// the same file's object code without LTO had them).
+inline void prefetch_line(const void* p) {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+  asm volatile("prefetcht0 (%0)" : : "r"(p));
+#else
+  __builtin_prefetch(p);
+#endif
+}
+
 void embree_error(void*, RTCError code, const char* str) {
   std::fprintf(stderr, "lumis: embree error %d: %s\n", static_cast<int>(code), str ? str : "");
 }
@@ -81,13 +92,16 @@ struct Geometry::Impl {
   };
   std::deque<std::vector<TriangleRecord>> records;
   std::deque<Sphere> spheres;
-  struct Slot {
-    bool is_mesh;
-    bool has_tiny;  // a mesh with a triangle below float's range for |cross|^2 (fill_hit's special case)
-    size_t index;
+  struct Slot {  // pointers into the deques above (their elements do not move)
+    const TriangleMesh* mesh = nullptr;     // null for a sphere
+    const TriangleRecord* records = nullptr;  // the mesh's, by primitive
+    const Sphere* sphere = nullptr;         // null for a mesh
+    bool has_tiny = false;  // a mesh with a triangle below float's range for |cross|^2 (fill_hit's special case)
+    bool has_attributes = false;  // shading normals or uvs: fill_hit reads the indices and these
   };
   std::vector<Slot> slots;  // by geometry id
   size_t triangles = 0;
+  bool prefetch = false;  // the triangle records outgrow the caches: prefetch hit records (set by commit)
   Bounds3 bounds;
 };
 
@@ -140,7 +154,7 @@ uint32_t Geometry::add_mesh(TriangleMesh mesh) {
   if (m.light >= 0) rtcAttachGeometryByID(impl_->light_scene, g, id);
   rtcReleaseGeometry(g);
   if (id >= impl_->slots.size()) impl_->slots.resize(id + 1);
-  impl_->slots[id] = {true, has_tiny, impl_->meshes.size() - 1};
+  impl_->slots[id] = {&m, records.data(), nullptr, has_tiny, !m.normals.empty() || !m.uv0.empty()};
   impl_->triangles += m.triangle_count();
   for (const Vec3& p : m.positions) impl_->bounds.expand(p);
   return id;
@@ -160,31 +174,34 @@ uint32_t Geometry::add_sphere(Sphere sphere) {
   if (s.light >= 0) rtcAttachGeometryByID(impl_->light_scene, g, id);
   rtcReleaseGeometry(g);
   if (id >= impl_->slots.size()) impl_->slots.resize(id + 1);
-  impl_->slots[id] = {false, false, impl_->spheres.size() - 1};
+  impl_->slots[id] = {nullptr, nullptr, &impl_->spheres.back(), false, false};
   impl_->bounds.expand(s.center - Vec3(s.radius));
   impl_->bounds.expand(s.center + Vec3(s.radius));
   return id;
 }
 
 void Geometry::commit() {
+  // About the size of a core's L2 cache: below it, prefetching the records costs more than it hides.
+  impl_->prefetch = impl_->triangles * sizeof(Impl::TriangleRecord) > (size_t(1) << 20);
   rtcCommitScene(impl_->scene);
   rtcCommitScene(impl_->light_scene);
 }
 
-bool Geometry::is_mesh(uint32_t id) const { return impl_->slots[id].is_mesh; }
-const TriangleMesh& Geometry::mesh(uint32_t id) const { return impl_->meshes[impl_->slots[id].index]; }
-const Sphere& Geometry::sphere(uint32_t id) const { return impl_->spheres[impl_->slots[id].index]; }
+bool Geometry::is_mesh(uint32_t id) const { return impl_->slots[id].mesh != nullptr; }
+const TriangleMesh& Geometry::mesh(uint32_t id) const { return *impl_->slots[id].mesh; }
+const Sphere& Geometry::sphere(uint32_t id) const { return *impl_->slots[id].sphere; }
 size_t Geometry::geometry_count() const { return impl_->slots.size(); }
 size_t Geometry::triangle_count() const { return impl_->triangles; }
 Bounds3 Geometry::bounds() const { return impl_->bounds; }
 void* Geometry::embree_scene() const { return impl_->scene; }
+bool Geometry::prefetches_hit_records() const { return impl_->prefetch; }
 
 void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, Hit& hit) const {
   hit.geom_id = geom_id;
   hit.prim_id = prim_id;
   const Impl::Slot& slot = impl_->slots[geom_id];
-  if (!slot.is_mesh) {
-    const Sphere& s = impl_->spheres[slot.index];
+  if (!slot.mesh) {
+    const Sphere& s = *slot.sphere;
     // b1, b2 unused: the caller set hit.p; reproject it onto the sphere to remove the error of o + t d.
     const Vec3 n = normalize(hit.p - s.center);
     hit.p = s.center + n * s.radius;
@@ -197,8 +214,8 @@ void Geometry::fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, 
     hit.light = s.light;
     return;
   }
-  const TriangleMesh& m = impl_->meshes[slot.index];
-  const Impl::TriangleRecord& record = impl_->records[slot.index][prim_id];
+  const TriangleMesh& m = *slot.mesh;
+  const Impl::TriangleRecord& record = slot.records[prim_id];
   const Vec3 p0 = record.p0, p1 = record.p1, p2 = record.p2, ng = record.ng;
   if (slot.has_tiny) [[unlikely]] {
     // Tiny triangles (see face_normal): Embree's barycentrics come out wrong while t stays right (measured; most
@@ -261,60 +278,129 @@ bool Geometry::intersect(const Ray& ray, Hit& hit) const {
   return true;
 }
 
-void Geometry::intersect_each(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found,
-                              bool packets) const {
-  // In chunks of 16 listed lanes: every ray of a chunk is traced before its hit records are filled.
-  for (int first = 0; first < m; first += 16)
-    intersect_each16(rays, lanes + first, std::min(16, m - first), hits, found, packets);
+inline void Geometry::prefetch_hit_record(uint32_t geom_id, uint32_t prim_id) const {
+  const Impl::Slot& slot = impl_->slots[geom_id];
+  if (!slot.mesh) return;
+  // The triangle record (48 bytes: up to two cache lines) and, when fill_hit reads attributes, the triangle's indices.
+  const Impl::TriangleRecord* record = slot.records + prim_id;
+  prefetch_line(record);
+  prefetch_line(reinterpret_cast<const char*>(record) + sizeof(Impl::TriangleRecord) - 1);
+  if (slot.has_attributes) prefetch_line(&slot.mesh->indices[3 * size_t(prim_id)]);
 }
 
-void Geometry::intersect_each16(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found,
-                                bool packets) const {
-  struct EmbreeHit {
-    uint32_t geom_id, prim_id;
-    float u, v, t;
-  } raw[16];
-  bool got[16];
+inline void Geometry::prefetch_hit_attributes(uint32_t geom_id, uint32_t prim_id) const {
+  const Impl::Slot& slot = impl_->slots[geom_id];
+  if (!slot.has_attributes) return;
+  const TriangleMesh& mesh = *slot.mesh;
+  const uint32_t* idx = &mesh.indices[3 * size_t(prim_id)];
+  for (int j = 0; j < 3; ++j) {
+    if (!mesh.normals.empty()) prefetch_line(&mesh.normals[idx[j]]);
+    if (!mesh.uv0.empty()) prefetch_line(&mesh.uv0[idx[j]]);
+  }
+}
+
+void Geometry::intersect_each(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found,
+                              bool packets) const {
+  int chunk_end[kMaxChunks];
+  const int chunks = (m + 15) / 16;
+  if (chunks > kMaxChunks) {  // not from the renderer (at most 256 lanes): in parts
+    intersect_each(rays, lanes, 16 * kMaxChunks, hits, found, packets);
+    intersect_each(rays, lanes + 16 * kMaxChunks, m - 16 * kMaxChunks, hits, found, packets);
+    return;
+  }
+  for (int c = 0; c < chunks; ++c) chunk_end[c] = std::min(16 * (c + 1), m);
+  pipeline(rays, lanes, 0, chunk_end, chunks, hits, found, packets ? Trace::Incoherent16 : Trace::Single);
+}
+
+void Geometry::intersect_packets(const Ray* rays, const int* packet_end, int n_packets, Hit* hits,
+                                 bool* found) const {
+  for (int p = 0; p < n_packets; p += kMaxChunks)
+    pipeline(rays, nullptr, p ? packet_end[p - 1] : 0, packet_end + p, std::min(kMaxChunks, n_packets - p), hits,
+             found, Trace::Coherent16);
+}
+
+void Geometry::intersect16(const Ray* rays, int n, Hit* hits, bool* found) const {
+  intersect_packets(rays, &n, 1, hits, found);
+}
+
+void Geometry::pipeline(const Ray* rays, const int* lanes, int start, const int* chunk_end, int chunks, Hit* hits,
+                        bool* found, Trace how) const {
+  // Pipelined so that cache misses overlap with Embree's traversal instead of stalling: chunk c is traced and its
+  // triangle records (and indices) prefetched; then the shading attributes of chunk c - 1 are prefetched through
+  // its indices, loaded by now; then the hits of chunk c - 2 are filled.
+  RawHit raw[3][16];
+  bool got[3][16];
+  const auto first = [&](int c) { return c == 0 ? start : chunk_end[c - 1]; };
+  const auto size = [&](int c) { return chunk_end[c] - first(c); };
+  if (!impl_->prefetch) {  // records that stay in the cache: each chunk filled as soon as it is traced
+    for (int c = 0; c < chunks; ++c) {
+      trace16(rays, lanes, first(c), size(c), raw[0], got[0], how, false);
+      fill16(rays, lanes, first(c), size(c), raw[0], got[0], hits, found);
+    }
+    return;
+  }
+  for (int c = 0; c < chunks + 2; ++c) {
+    if (c < chunks) trace16(rays, lanes, first(c), size(c), raw[c % 3], got[c % 3], how, true);
+    if (c >= 1 && c - 1 < chunks) {
+      const RawHit* r = raw[(c - 1) % 3];
+      const bool* g = got[(c - 1) % 3];
+      for (int i = 0, n = size(c - 1); i < n; ++i)
+        if (g[i]) prefetch_hit_attributes(r[i].geom_id, r[i].prim_id);
+    }
+    if (c >= 2) fill16(rays, lanes, first(c - 2), size(c - 2), raw[(c - 2) % 3], got[(c - 2) % 3], hits, found);
+  }
+}
+
+void Geometry::trace16(const Ray* rays, const int* lanes, int first, int m, RawHit* raw, bool* got, Trace how,
+                       bool prefetch) const {
+  const auto lane = [&](int i) { return lanes ? lanes[first + i] : first + i; };
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   QueryLog* const log = t_query_log;
-  if (packets && m > 1) {  // one incoherent packet (the default context flag); a lone ray goes alone, below
+  // One packet; a lone incoherent ray goes alone, below.
+  if (how == Trace::Coherent16 || (how == Trace::Incoherent16 && m > 1)) {
+    if (how == Trace::Coherent16) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     alignas(64) RTCRayHit16 p;
     alignas(64) int valid[16];
     for (int i = 0; i < 16; ++i) {
-      const bool ok = i < m && ray_is_valid(rays[lanes[i]]);
+      const bool ok = i < m && ray_is_valid(rays[lane(i)]);
       valid[i] = ok ? -1 : 0;
-      to_embree16(ok ? rays[lanes[i]] : Ray{{0, 0, 0}, {0, 0, 1}, 0, 0}, p, i);
+      to_embree16(ok ? rays[lane(i)] : Ray{{0, 0, 0}, {0, 0, 1}, 0, 0}, p, i);
     }
     if (log) [[unlikely]] {
       Ray packet[16];
-      for (int i = 0; i < m; ++i) packet[i] = rays[lanes[i]];
-      log->add(QueryLog::Call::Intersect16Incoherent, packet, m);
+      for (int i = 0; i < m; ++i) packet[i] = rays[lane(i)];
+      log->add(how == Trace::Coherent16 ? QueryLog::Call::Intersect16 : QueryLog::Call::Intersect16Incoherent,
+               packet, m);
     }
     rtcIntersect16(valid, impl_->scene, &ctx, &p);
     for (int i = 0; i < m; ++i) {
       got[i] = valid[i] && p.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
       if (got[i]) raw[i] = {p.hit.geomID[i], p.hit.primID[i], p.hit.u[i], p.hit.v[i], p.ray.tfar[i]};
     }
-  } else {
-    for (int i = 0; i < m; ++i) {
-      const Ray& ray = rays[lanes[i]];
-      got[i] = false;
-      if (!ray_is_valid(ray)) continue;
-      if (log) [[unlikely]] log->add(QueryLog::Call::Intersect1, &ray, 1);
-      RTCRayHit rh = to_embree(ray);
-      rtcIntersect1(impl_->scene, &ctx, &rh);
-      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-      got[i] = true;
-      raw[i] = {rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar};
-      prefetch_hit_record(raw[i].geom_id, raw[i].prim_id);  // as soon as the ray is traced
-    }
+    if (prefetch)
+      for (int i = 0; i < m; ++i)
+        if (got[i]) prefetch_hit_record(raw[i].geom_id, raw[i].prim_id);
+    return;
   }
-  if (packets && m > 1)
-    for (int i = 0; i < m; ++i)
-      if (got[i]) prefetch_hit_record(raw[i].geom_id, raw[i].prim_id);
   for (int i = 0; i < m; ++i) {
-    const int k = lanes[i];
+    const Ray& ray = rays[lane(i)];
+    got[i] = false;
+    if (!ray_is_valid(ray)) continue;
+    if (log) [[unlikely]] log->add(QueryLog::Call::Intersect1, &ray, 1);
+    RTCRayHit rh = to_embree(ray);
+    rtcIntersect1(impl_->scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+    got[i] = true;
+    raw[i] = {rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar};
+    if (prefetch) prefetch_hit_record(raw[i].geom_id, raw[i].prim_id);  // as soon as the ray is traced
+  }
+}
+
+void Geometry::fill16(const Ray* rays, const int* lanes, int first, int m, const RawHit* raw, const bool* got,
+                      Hit* hits, bool* found) const {
+  for (int i = 0; i < m; ++i) {
+    const int k = lanes ? lanes[first + i] : first + i;
     found[k] = got[i];
     if (!got[i]) continue;
     Hit& hit = hits[k];
@@ -322,37 +408,6 @@ void Geometry::intersect_each16(const Ray* rays, const int* lanes, int m, Hit* h
     hit.p = rays[k].o + rays[k].d * hit.t;
     fill_hit(raw[i].geom_id, raw[i].prim_id, raw[i].u, raw[i].v, hit);
     hit.front = dot(rays[k].d, hit.ng) < 0;
-  }
-}
-
-void Geometry::prefetch_hit_record(uint32_t geom_id, uint32_t prim_id) const {
-  const Impl::Slot& slot = impl_->slots[geom_id];
-  if (!slot.is_mesh) return;
-  // The triangle record (48 bytes: up to two cache lines) and, when fill_hit reads attributes, the triangle's indices.
-  const Impl::TriangleRecord* record = &impl_->records[slot.index][prim_id];
-  __builtin_prefetch(record);
-  __builtin_prefetch(reinterpret_cast<const char*>(record) + sizeof(Impl::TriangleRecord) - 1);
-  const TriangleMesh& mesh = impl_->meshes[slot.index];
-  if (!mesh.normals.empty() || !mesh.uv0.empty()) __builtin_prefetch(&mesh.indices[3 * size_t(prim_id)]);
-}
-
-void Geometry::intersect16(const Ray* rays, int n, Hit* hits, bool* found) const {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  if (QueryLog* log = t_query_log) [[unlikely]] log->add(QueryLog::Call::Intersect16, rays, n);
-  alignas(64) RTCRayHit16 p;
-  alignas(64) int valid[16];
-  to_embree16(rays, n, p, valid);
-  rtcIntersect16(valid, impl_->scene, &ctx, &p);
-  for (int i = 0; i < n; ++i) {
-    found[i] = valid[i] && p.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
-    if (!found[i]) continue;
-    Hit& hit = hits[i];
-    hit.t = p.ray.tfar[i];
-    hit.p = rays[i].o + rays[i].d * hit.t;
-    fill_hit(p.hit.geomID[i], p.hit.primID[i], p.hit.u[i], p.hit.v[i], hit);
-    hit.front = dot(rays[i].d, hit.ng) < 0;
   }
 }
 

@@ -183,9 +183,13 @@ class Geometry {
   /// Closest hits of up to 16 coherent rays (camera rays) in one Embree packet query: found[i] and hits[i] as
   /// intersect(rays[i], hits[i]) would give, for i < n (an invalid ray is a miss).
   void intersect16(const Ray* rays, int n, Hit* hits, bool* found) const;
+  /// intersect16 on each packet of coherent rays, packet p holding rays [packet_end[p - 1], packet_end[p])
+  /// (packet_end[-1] = 0, each packet at most 16 rays): the same results, with the hit records of one packet read
+  /// while the next ones are traced.
+  void intersect_packets(const Ray* rays, const int* packet_end, int n_packets, Hit* hits, bool* found) const;
   /// found[k] = intersect(rays[k], hits[k]) for every lane k = lanes[i], i < m (other lanes' found and hits
-  /// untouched); in chunks of 16 lanes, all rays of a chunk are traced before any of its hit records is read, so
-  /// that the records' memory loads (prefetched) overlap instead of each stalling its ray. packets = false: one
+  /// untouched); in chunks of 16 lanes, a chunk's hit records are read (prefetched) while the next chunks are
+  /// traced, so that their memory loads overlap with Embree's work instead of each stalling its ray. packets = false: one
   /// rtcIntersect1 per ray, the same results bit for bit; true: each chunk of two or more rays as one incoherent
   /// rtcIntersect16 packet, the same hits with t rounded as Embree's packet kernels round it (the last bits).
   void intersect_each(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found, bool packets = false) const;
@@ -206,6 +210,8 @@ class Geometry {
   Bounds3 bounds() const;
   /// Fill the Hit of a ray with primitive prim_id at Embree's barycentrics (b1, b2); hit.p holds o + t d on entry.
   void fill_hit(uint32_t geom_id, uint32_t prim_id, float b1, float b2, Hit& hit) const;
+  /// Whether the queries prefetch hit records (set by commit: when the triangle records outgrow a core's cache).
+  bool prefetches_hit_records() const;
   /// The committed RTCScene (as void*, so this header needs no Embree include); for raw-throughput benchmarks.
   void* embree_scene() const;
   /// From now on, every query the calling thread makes (on any Geometry) is appended to log; nullptr stops.
@@ -214,8 +220,26 @@ class Geometry {
  private:
   /// Start loading what fill_hit will read for a hit on (geom_id, prim_id).
   void prefetch_hit_record(uint32_t geom_id, uint32_t prim_id) const;
-  /// intersect_each for one chunk (m <= 16).
-  void intersect_each16(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found, bool packets) const;
+  /// Start loading the shading normals and uvs of the hit's corners (reads its indices: prefetch those first).
+  void prefetch_hit_attributes(uint32_t geom_id, uint32_t prim_id) const;
+  /// Embree's answer for one ray, kept until its hit record is filled.
+  struct RawHit {
+    uint32_t geom_id, prim_id;
+    float u, v, t;
+  };
+  enum class Trace { Single, Incoherent16, Coherent16 };
+  static constexpr int kMaxChunks = 16;
+  /// The closest hits of chunks of up to 16 rays (chunk c: list positions [chunk_end[c - 1], chunk_end[c]) of lanes,
+  /// or of the rays themselves when lanes is null; chunk_end[-1] = start), three stages in a pipeline: trace,
+  /// prefetch, fill.
+  void pipeline(const Ray* rays, const int* lanes, int start, const int* chunk_end, int chunks, Hit* hits,
+                bool* found, Trace how) const;
+  /// The pipeline's first stage for one chunk (m <= 16): trace, keep the raw hits, prefetch their records if asked.
+  void trace16(const Ray* rays, const int* lanes, int first, int m, RawHit* raw, bool* got, Trace how,
+               bool prefetch) const;
+  /// The pipeline's last stage for one chunk: hits[k] and found[k] of its lanes k from raw and got.
+  void fill16(const Ray* rays, const int* lanes, int first, int m, const RawHit* raw, const bool* got, Hit* hits,
+              bool* found) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -98,8 +98,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
             Sampler::start_batch(samplers, n, px, py, i, jitter);  // box filter: uniform over the pixel
             for (int k = 0; k < n; ++k) rays[k] = camera.generate_ray({px[k] + jitter[k].x, py[k] + jitter[k].y});
             if (packets) {
-              for (int p = 0, first = 0; p < n_packets; first = packet_end[p++])
-                scene.geometry.intersect16(rays + first, packet_end[p] - first, hits + first, found + first);
+              scene.geometry.intersect_packets(rays, packet_end, n_packets, hits, found);
               for (int k = 0; k < n; ++k) primary[k] = found[k] ? &hits[k] : nullptr;
             }
             integrator.li(scene, batch, local);

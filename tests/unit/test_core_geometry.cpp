@@ -16,16 +16,35 @@
 namespace lumis {
 namespace {
 
-void build_scene(Geometry& g) {
+// A quad (two triangles, or, large, a 120 x 120 grid of 28,800 triangles with shading normals and uvs: records
+// large enough that the queries prefetch them) and two spheres.
+void build_scene(Geometry& g, bool large = false) {
   TriangleMesh quad;
-  quad.positions = {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}};
-  quad.indices = {0, 1, 2, 0, 2, 3};
-  quad.uv0 = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  if (!large) {
+    quad.positions = {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}};
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    quad.uv0 = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  } else {
+    const int cells = 120;
+    for (int y = 0; y <= cells; ++y)
+      for (int x = 0; x <= cells; ++x) {
+        const float u = float(x) / cells, v = float(y) / cells;
+        quad.positions.push_back({4 * u - 2, 4 * v - 2, 0});
+        quad.uv0.push_back({u, v});
+        quad.normals.push_back(normalize(Vec3{0.3f * (u - 0.5f), 0.2f * (v - 0.5f), 1}));
+      }
+    for (uint32_t y = 0; y < cells; ++y)
+      for (uint32_t x = 0; x < cells; ++x) {
+        const uint32_t i = y * (cells + 1) + x;
+        quad.indices.insert(quad.indices.end(), {i, i + 1, i + cells + 2, i, i + cells + 2, i + cells + 1});
+      }
+  }
   quad.material = 3;
   g.add_mesh(quad);
   g.add_sphere({{0.5f, 0.2f, 1}, 0.4f, 1, -1});
   g.add_sphere({{-0.8f, -0.5f, 0.5f}, 0.3f, -1, 0});
   g.commit();
+  EXPECT_EQ(g.prefetches_hit_records(), large);  // the large scene takes the prefetching pipeline
 }
 
 void expect_same_hit(const Hit& a, const Hit& b, int lane) {
@@ -85,53 +104,72 @@ TEST(Geometry, NextFloatTowardIsNextFloatUpOrDown) {
   for (int i = 0; i < 1'000'000; ++i) check(std::bit_cast<float>(rng.next_u32()));
 }
 
+// Camera packets, one at a time (intersect16) and many in one call (intersect_packets: 64 packets, more than one
+// pipeline's worth), on the small scene and on the large one whose hit records are prefetched.
 TEST(Geometry, PacketQueryMatchesSingleRays) {
-  Geometry g;
-  build_scene(g);
-  Pcg32 rng(7, 11);
-  int hits = 0, misses = 0;
-  for (int packet = 0; packet < 64; ++packet) {
-    const int n = packet % 4 == 3 ? 1 + packet % 16 : 16;  // some partial packets
-    Ray rays[16];
-    const Vec3 eye(0.3f, -0.2f, 4);
-    for (int i = 0; i < n; ++i) {
-      // Camera-like rays from one eye toward a 5 x 5 window around the scene: most hit, the edges miss.
-      const Vec3 target(rng.next_float() * 5 - 2.5f, rng.next_float() * 5 - 2.5f, 0);
-      rays[i] = {eye, normalize(target - eye), 0, INFINITY};
+  for (const bool large : {false, true}) {
+    Geometry g;
+    build_scene(g, large);
+    Pcg32 rng(7, 11);
+    int hits = 0, misses = 0;
+    Ray rays[64 * 16];
+    int packet_end[64];
+    for (int packet = 0, end = 0; packet < 64; ++packet) {
+      const int n = packet % 4 == 3 ? 1 + packet % 16 : 16;  // some partial packets
+      const Vec3 eye(0.3f, -0.2f, 4);
+      for (int i = end; i < end + n; ++i) {
+        // Camera-like rays from one eye toward a 5 x 5 window around the scene: most hit, the edges miss.
+        const Vec3 target(rng.next_float() * 5 - 2.5f, rng.next_float() * 5 - 2.5f, 0);
+        rays[i] = {eye, normalize(target - eye), 0, INFINITY};
+      }
+      if (packet == 5) rays[end + 2].d = {NAN, 0, -1};  // an invalid ray is a miss, as intersect() says
+      packet_end[packet] = end += n;
     }
-    if (packet == 5) rays[2].d = {NAN, 0, -1};  // an invalid ray is a miss, as intersect() says
-    Hit packed[16];
-    bool found[16];
-    g.intersect16(rays, n, packed, found);
-    for (int i = 0; i < n; ++i) {
-      Hit single;
-      const bool f = g.intersect(rays[i], single);
-      ASSERT_EQ(f, found[i]) << "packet " << packet << " lane " << i;
-      if (f) {
-        expect_same_hit(single, packed[i], i);
-        ++hits;
-      } else {
-        ++misses;
+    Hit all[64 * 16];
+    bool found_all[64 * 16];
+    g.intersect_packets(rays, packet_end, 64, all, found_all);
+    for (int packet = 0; packet < 64; ++packet) {
+      const int first = packet ? packet_end[packet - 1] : 0, n = packet_end[packet] - first;
+      Hit packed[16];
+      bool found[16];
+      g.intersect16(rays + first, n, packed, found);
+      for (int i = 0; i < n; ++i) {
+        const std::string where = "packet " + std::to_string(packet) + " lane " + std::to_string(i) +
+                                  (large ? " (large)" : "");
+        Hit single;
+        const bool f = g.intersect(rays[first + i], single);
+        ASSERT_EQ(f, found[i]) << where;
+        ASSERT_EQ(f, found_all[first + i]) << where;
+        if (f) {
+          expect_same_hit(single, packed[i], i);
+          expect_same_hit(single, all[first + i], i);
+          EXPECT_NEAR(dot(single.ns, all[first + i].ns), 1, 1e-6f) << where;
+          ++hits;
+        } else {
+          ++misses;
+        }
       }
     }
+    EXPECT_GT(hits, 400);  // the test sees both outcomes
+    EXPECT_GT(misses, 40);
   }
-  EXPECT_GT(hits, 100);  // the test sees both outcomes
-  EXPECT_GT(misses, 10);
 }
 
 // Rays traced one by one with their hit records filled afterwards (intersect_each): the very same hits as
 // intersect(), bit for bit, including the error bound; lanes not listed keep their hit and found flag untouched.
 TEST(Geometry, EachQueryMatchesSingleRays) {
-  Geometry g;
-  build_scene(g);
+  for (const bool large : {false, true})  // large: the hit records are prefetched, and filled a pipeline behind
   for (const bool packets : {false, true}) {  // one by one: bit for bit; in packets: to Embree's packet rounding
+    Geometry g;
+    build_scene(g, large);
     Pcg32 rng(5, 9);
     int hits = 0, misses = 0;
     for (int batch = 0; batch < 32; ++batch) {
-      // Full chunks of 16, shorter ones (a lone ray goes alone), and several chunks (40 lanes here).
-      const int n = batch % 4 == 3 ? 1 + batch % 16 : batch % 4 == 2 ? 40 : 16;
-      Ray rays[40];
-      bool active[40];
+      // Full chunks of 16, shorter ones (a lone ray goes alone), several chunks (40 lanes), a tile's 256 lanes and
+      // more than one pipeline holds (300).
+      const int n = batch % 4 == 3 ? 1 + batch % 16 : batch % 4 == 2 ? 40 : batch == 4 ? 256 : batch == 8 ? 300 : 16;
+      Ray rays[300];
+      bool active[300];
       for (int i = 0; i < n; ++i) {
         // Incoherent rays from scattered origins above the quad, in all directions (some miss, some hit the back).
         const Vec3 o(rng.next_float() * 4 - 2, rng.next_float() * 4 - 2, rng.next_float() * 2 + 0.1f);
@@ -139,17 +177,17 @@ TEST(Geometry, EachQueryMatchesSingleRays) {
         rays[i] = {o, d, 1e-4f, INFINITY};
         active[i] = (i + batch) % 5 != 0;
       }
-      Hit each[40];
+      Hit each[300];
       for (Hit& h : each) h.material = -7;  // marks an untouched record
-      bool found[40];
-      int lanes[40], m = 0;
+      bool found[300];
+      int lanes[300], m = 0;
       for (int i = n - 1; i >= 0; --i)  // listed backwards: any order
         if (active[i]) lanes[m++] = i;
       for (int i = 0; i < n; ++i) found[i] = !active[i];  // unlisted lanes' flags must stay as they are
       g.intersect_each(rays, lanes, m, each, found, packets);
       for (int i = 0; i < n; ++i) {
         const std::string where = "batch " + std::to_string(batch) + " lane " + std::to_string(i) +
-                                  (packets ? " (packets)" : "");
+                                  (packets ? " (packets)" : "") + (large ? " (large)" : "");
         if (!active[i]) {
           EXPECT_TRUE(found[i]) << where;
           EXPECT_EQ(each[i].material, -7) << where;
@@ -165,6 +203,7 @@ TEST(Geometry, EachQueryMatchesSingleRays) {
         ++hits;
         if (packets) {
           expect_same_hit(single, each[i], i);
+          EXPECT_NEAR(dot(single.ns, each[i].ns), 1, 1e-6f) << where;
           continue;
         }
         EXPECT_EQ(single.t, each[i].t) << where;
