@@ -188,10 +188,11 @@ class Geometry {
   /// while the next ones are traced.
   void intersect_packets(const Ray* rays, const int* packet_end, int n_packets, Hit* hits, bool* found) const;
   /// found[k] = intersect(rays[k], hits[k]) for every lane k = lanes[i], i < m (other lanes' found and hits
-  /// untouched); in chunks of 16 lanes, a chunk's hit records are read (prefetched) while the next chunks are
-  /// traced, so that their memory loads overlap with Embree's work instead of each stalling its ray. packets = false: one
-  /// rtcIntersect1 per ray, the same results bit for bit; true: each chunk of two or more rays as one incoherent
-  /// rtcIntersect16 packet, the same hits with t rounded as Embree's packet kernels round it (the last bits).
+  /// untouched); in chunks of 16 lanes. On scenes with large records (prefetches_hit_records()) a chunk's hit
+  /// records are prefetched and read while the next chunks are traced, so that their memory loads overlap with
+  /// Embree's work instead of each stalling its ray. packets = false: one rtcIntersect1 per ray, the same results
+  /// bit for bit; true: each chunk of two or more rays as one incoherent rtcIntersect16 packet, the same hits with
+  /// t rounded as Embree's packet kernels round it (the last bits).
   void intersect_each(const Ray* rays, const int* lanes, int m, Hit* hits, bool* found, bool packets = false) const;
   /// Whether anything lies in (ray.tmin, ray.tmax).
   bool occluded(const Ray& ray) const;
