@@ -221,6 +221,7 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   // Each variant's queries, recorded once (an extra render, not timed) and replayed in every repetition.
   std::vector<std::vector<QueryLog>> logs(variants.size());
   std::vector<std::vector<Replays>> replays(variants.size());
+  std::vector<double> own_by_kind[kRayKinds];  // the scaling integrator's rays, kind by kind, rays/s
   // Repetitions outermost: the renders and the raw timings they are compared with see the same machine load.
   for (int r = 0; r < repeat; ++r) {
     std::fprintf(stderr, "lumis bench: %s: repetition %d of %d\n", res.name.c_str(), r + 1, repeat);
@@ -251,7 +252,13 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
     for (size_t i = 0; i < variants.size(); ++i)
       replays[i].push_back({replay_queries(scene->geometry, logs[i], threads, true),
                             replay_queries(scene->geometry, logs[i], threads, false)});
+    for (size_t i = 0; i < variants.size(); ++i)
+      for (int k = 0; k < kRayKinds && variants[i] == res.scaling_integrator; ++k) {
+        const ReplayTiming t = replay_queries(scene->geometry, logs[i], threads, true, RayKind(k));
+        if (t.rays) own_by_kind[k].push_back(double(t.rays) / std::max(t.wall, 1e-9));
+      }
   }
+  for (int k = 0; k < kRayKinds; ++k) res.own_rays_per_s[k] = median(own_by_kind[k]);
   raw.reset();
   logs.clear();
   res.raw = median_raw(raws);

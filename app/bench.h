@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,9 @@ struct RawThroughput {
   Rate camera1, camera16;   ///< rtcIntersect1 / rtcIntersect16 (coherent 4x4 pixel packets)
   Rate bounce1, bounce16;   ///< rtcIntersect1 / rtcIntersect16 (incoherent)
   Rate shadow1, shadow16;   ///< rtcOccluded1 / rtcOccluded16
+  /// rtcIntersect1 / rtcOccluded1 on the same bounce and shadow rays in a random order: made in camera-ray order,
+  /// the rays above come up to 4 spp x 16 in a row from one 4x4-pixel block, a locality that this removes
+  Rate bounce1_shuffled, shadow1_shuffled;
   Rate light_query;         ///< Geometry::all_light_hits on the bounce rays (the `mis` density query)
   Rate bounce_lumis;        ///< Geometry::intersect on the bounce rays: rtcIntersect1 plus lumis's Hit record
   size_t camera_rays = 0, bounce_rays = 0, shadow_rays = 0;
@@ -85,11 +89,21 @@ struct ReplayTiming {
   size_t hits = 0;   ///< closest-hit rays that hit, occluded shadow rays, light queries that met a light
 };
 
+/// The kinds of ray the benchmark tells apart, in the order of its tables.
+enum class RayKind { Camera, Bounce, Shadow, LightQuery };
+inline constexpr int kRayKinds = 4;
+
+/// The kind of ray a logged call traced, for a render with camera packets on (as the benchmark logs them): coherent
+/// 16-ray packets are camera rays, other closest-hit calls bounce rays (incoherent packets, and a bounce's lone
+/// last ray), occlusion calls shadow rays, all_light_hits light queries.
+RayKind ray_kind(QueryLog::Call call);
+
 /// Trace the queries of `logs` again on `threads` threads, one task per log (a render's tile), with no shading:
 /// as they were made (coherent camera packets, shadow packets) or, with single_rays, every ray by
-/// rtcIntersect1/rtcOccluded1 (light queries are Geometry::all_light_hits either way).
+/// rtcIntersect1/rtcOccluded1 (light queries are Geometry::all_light_hits either way). With `only`, just the calls
+/// of that kind of ray (ReplayTiming::rays counts those).
 ReplayTiming replay_queries(const Geometry& geometry, const std::vector<QueryLog>& logs, int threads,
-                            bool single_rays);
+                            bool single_rays, std::optional<RayKind> only = std::nullopt);
 
 /// Element-wise median of several measurements.
 RawThroughput median_raw(const std::vector<RawThroughput>& runs);
@@ -144,6 +158,10 @@ struct SceneResult {
   struct PacketGain {
     double samples_per_s_without = 0, speedup_cpu = 0;
   } camera_packets, shadow_packets, bounce_packets;
+  /// The scaling integrator's own rays (its logged render), replayed one kind at a time (RayKind order) by
+  /// single-ray calls: rays/s, wall clock, median; 0 for a kind it traced none of. Beside RawThroughput's
+  /// single-ray rates, they show which kinds of the render's rays cost Embree more than the raw table's.
+  double own_rays_per_s[kRayKinds] = {};
 };
 
 struct BenchReport {

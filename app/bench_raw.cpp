@@ -118,6 +118,7 @@ struct RawBench::Impl {
   tbb::task_arena arena;
   FtzObserver ftz{arena};
   std::vector<Ray> cam, bounce, shadow;
+  std::vector<Ray> bounce_shuffled, shadow_shuffled;  // the same rays in a random order
   double min_seconds;
   Impl(const Scene& s, int threads, double min_s) : scene(s), arena(std::max(1, threads)), min_seconds(min_s) {}
 };
@@ -171,6 +172,14 @@ RawBench::RawBench(const Scene& scene, int width, int height, int threads, size_
     impl_->bounce.insert(impl_->bounce.end(), bounce_parts[c].begin(), bounce_parts[c].end());
     impl_->shadow.insert(impl_->shadow.end(), shadow_parts[c].begin(), shadow_parts[c].end());
   }
+  // The same rays in a random order (Fisher-Yates, fixed seed): no two rays in a row share a pixel block.
+  Pcg32 order(13, 17);
+  const auto shuffled = [&](std::vector<Ray> v) {
+    for (size_t i = v.size(); i > 1; --i) std::swap(v[i - 1], v[order.next_u32() % uint32_t(i)]);
+    return v;
+  };
+  impl_->bounce_shuffled = shuffled(impl_->bounce);
+  impl_->shadow_shuffled = shuffled(impl_->shadow);
 }
 
 RawThroughput RawBench::measure() {
@@ -203,6 +212,12 @@ RawThroughput RawBench::measure() {
   out.shadow16 = time_rays(m.arena, m.min_seconds, shadow.size(), Range([&](size_t b, size_t e) {
                              return trace16(rtc, shadow, b, e, Query::Occluded, false);
                            }));
+  out.bounce1_shuffled = time_rays(m.arena, m.min_seconds, bounce.size(), Range([&](size_t b, size_t e) {
+                                     return trace1(rtc, m.bounce_shuffled, b, e, Query::Intersect);
+                                   }));
+  out.shadow1_shuffled = time_rays(m.arena, m.min_seconds, shadow.size(), Range([&](size_t b, size_t e) {
+                                     return trace1(rtc, m.shadow_shuffled, b, e, Query::Occluded);
+                                   }));
   const Geometry& g = m.scene.geometry;
   out.bounce_lumis = time_rays(m.arena, m.min_seconds, bounce.size(), Range([&](size_t b, size_t e) {
                                  size_t found = 0;
@@ -234,6 +249,7 @@ RawThroughput median_raw(const std::vector<RawThroughput>& runs) {
   };
   for (Rate RawThroughput::*f : {&RawThroughput::camera1, &RawThroughput::camera16, &RawThroughput::bounce1,
                                  &RawThroughput::bounce16, &RawThroughput::shadow1, &RawThroughput::shadow16,
+                                 &RawThroughput::bounce1_shuffled, &RawThroughput::shadow1_shuffled,
                                  &RawThroughput::light_query, &RawThroughput::bounce_lumis})
     med(f);
   return out;

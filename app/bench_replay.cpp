@@ -46,12 +46,13 @@ size_t trace_single(RTCScene scene, const Ray& ray, bool occlusion) {
   return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
-size_t replay_log(const Geometry& g, const QueryLog& log, bool single_rays) {
+size_t replay_log(const Geometry& g, const QueryLog& log, bool single_rays, std::optional<RayKind> only) {
   const RTCScene scene = static_cast<RTCScene>(g.embree_scene());
   using Call = QueryLog::Call;
   size_t count = 0;
   LightHitRecord light_hits[64];
   for (const QueryLog::Entry& e : log.calls) {
+    if (only && ray_kind(e.call) != *only) continue;
     const Ray* r = &log.rays[e.first];
     const bool occlusion = e.call == Call::Occluded1 || e.call == Call::Occluded16;
     if (!single_rays && (e.call == Call::Intersect16 || e.call == Call::Intersect16Incoherent ||
@@ -68,16 +69,32 @@ size_t replay_log(const Geometry& g, const QueryLog& log, bool single_rays) {
 
 }  // namespace
 
-ReplayTiming replay_queries(const Geometry& g, const std::vector<QueryLog>& logs, int threads, bool single_rays) {
+RayKind ray_kind(QueryLog::Call call) {
+  using Call = QueryLog::Call;
+  switch (call) {
+    case Call::Intersect16: return RayKind::Camera;
+    case Call::Intersect1:
+    case Call::Intersect16Incoherent: return RayKind::Bounce;
+    case Call::Occluded1:
+    case Call::Occluded16: return RayKind::Shadow;
+    case Call::LightHits: return RayKind::LightQuery;
+  }
+  return RayKind::Bounce;
+}
+
+ReplayTiming replay_queries(const Geometry& g, const std::vector<QueryLog>& logs, int threads, bool single_rays,
+                            std::optional<RayKind> only) {
   tbb::task_arena arena(std::max(1, threads));
   FtzObserver ftz(arena);
   ReplayTiming out;
-  for (const QueryLog& log : logs) out.rays += log.rays.size();
+  for (const QueryLog& log : logs)
+    for (const QueryLog::Entry& e : log.calls)
+      if (!only || ray_kind(e.call) == *only) out.rays += e.n;
   std::vector<size_t> counts(logs.size());
   const auto t0 = std::chrono::steady_clock::now();
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, logs.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t i = r.begin(); i < r.end(); ++i) counts[i] = replay_log(g, logs[i], single_rays);
+      for (size_t i = r.begin(); i < r.end(); ++i) counts[i] = replay_log(g, logs[i], single_rays, only);
     });
   });
   out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

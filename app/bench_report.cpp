@@ -100,6 +100,29 @@ void print_bench_report(const BenchReport& r) {
   std::printf("(lightq: Geometry::all_light_hits; lumis: Geometry::intersect, i.e. rtcIntersect1 plus the Hit record, "
               "on the bounce rays)\n");
 
+  std::printf("\nEmbree by kind of ray, Mrays/s of single-ray calls  %16s %24s %24s %16s\n", "camera raw/own",
+              "bounce raw/shuffled/own", "shadow raw/shuffled/own", "lightq raw/own");
+  const auto own = [](const SceneResult& s, RayKind k) {
+    char buf[16] = "-";
+    if (const double v = s.own_rays_per_s[int(k)]; v > 0) std::snprintf(buf, sizeof buf, "%.2f", mega(v));
+    return std::string(buf);
+  };
+  for (const SceneResult& s : r.scenes) {
+    if (!s.error.empty()) continue;
+    const RawThroughput& w = s.raw;
+    char row[4][48];
+    std::snprintf(row[0], sizeof row[0], "%.2f/%s", mega(w.camera1.wall), own(s, RayKind::Camera).c_str());
+    std::snprintf(row[1], sizeof row[1], "%.2f/%.2f/%s", mega(w.bounce1.wall), mega(w.bounce1_shuffled.wall),
+                  own(s, RayKind::Bounce).c_str());
+    std::snprintf(row[2], sizeof row[2], "%.2f/%.2f/%s", mega(w.shadow1.wall), mega(w.shadow1_shuffled.wall),
+                  own(s, RayKind::Shadow).c_str());
+    std::snprintf(row[3], sizeof row[3], "%.2f/%s", mega(w.light_query.wall), own(s, RayKind::LightQuery).c_str());
+    std::printf("%-28s %-22s %16s %24s %24s %16s\n", s.name.c_str(), s.scaling_integrator.c_str(), row[0], row[1],
+                row[2], row[3]);
+  }
+  std::printf("(raw: the rays of the table above, made in camera-ray order; shuffled: the same rays in a random "
+              "order;\n own: the render's own rays, replayed kind by kind; '-': the render traced none)\n");
+
   std::printf("\nratio = lumis rays/s over raw Embree rays/s for the same mix of rays (rtcIntersect1/rtcOccluded1;\n"
               "  cpu: per CPU-second, insensitive to other load; cpu16: against 16-wide packets;\n"
               "  own: against single-ray Embree calls on exactly the render's own rays, replayed without shading;\n"
@@ -184,6 +207,13 @@ std::string bench_report_json(const BenchReport& r) {
                            {"camera_hit_fraction", w.camera_hit_fraction},
                            {"bounce_hit_fraction", w.bounce_hit_fraction},
                            {"shadow_occluded_fraction", w.shadow_occluded_fraction}};
+    j["raw_rays_per_s"]["bounce_intersect1_shuffled"] = w.bounce1_shuffled.wall;
+    j["raw_rays_per_s"]["shadow_occluded1_shuffled"] = w.shadow1_shuffled.wall;
+    j["own_rays_per_s"] = {{"integrator", s.scaling_integrator},
+                           {"camera", s.own_rays_per_s[int(RayKind::Camera)]},
+                           {"bounce", s.own_rays_per_s[int(RayKind::Bounce)]},
+                           {"shadow", s.own_rays_per_s[int(RayKind::Shadow)]},
+                           {"light_query", s.own_rays_per_s[int(RayKind::LightQuery)]}};
     j["raw_rays_per_cpu_s"] = {{"camera_intersect1", w.camera1.cpu},  {"camera_intersect16", w.camera16.cpu},
                                {"bounce_intersect1", w.bounce1.cpu},  {"bounce_intersect16", w.bounce16.cpu},
                                {"shadow_occluded1", w.shadow1.cpu},   {"shadow_occluded16", w.shadow16.cpu},

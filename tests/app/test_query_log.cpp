@@ -174,6 +174,35 @@ TEST(Replay, TracesWhatWasLogged) {
     EXPECT_EQ(r.hits, expected) << (single ? "single rays" : "as called");
     EXPECT_GT(r.wall, 0);
   }
+  // Kind by kind (the benchmark's per-kind table): each kind's calls alone, and together they are the whole log.
+  const size_t kind_rays[kRayKinds] = {16, 0, 16 + 3, 16};
+  const size_t kind_hits[kRayKinds] = {hits_expected, 0, occluded_expected, lq_expected};
+  for (int k = 0; k < kRayKinds; ++k) {
+    const ReplayTiming r = replay_queries(scene->geometry, {log}, 2, true, RayKind(k));
+    EXPECT_EQ(r.rays, kind_rays[k]) << "kind " << k;
+    EXPECT_EQ(r.hits, kind_hits[k]) << "kind " << k;
+  }
+}
+
+// Every logged call is of one kind, and a render's logs split by kind as RenderStats splits its rays.
+TEST(Replay, KindsSplitARenderAsItsCounters) {
+  EXPECT_EQ(ray_kind(Call::Intersect16), RayKind::Camera);
+  EXPECT_EQ(ray_kind(Call::Intersect16Incoherent), RayKind::Bounce);
+  EXPECT_EQ(ray_kind(Call::Intersect1), RayKind::Bounce);
+  EXPECT_EQ(ray_kind(Call::Occluded1), RayKind::Shadow);
+  EXPECT_EQ(ray_kind(Call::Occluded16), RayKind::Shadow);
+  EXPECT_EQ(ray_kind(Call::LightHits), RayKind::LightQuery);
+  auto scene = cornell();
+  for (const char* variant : {"nee_mis", "mis"}) {
+    SCOPED_TRACE(variant);
+    scene->settings.integrator = variant;
+    const Logged l = render_logged(*scene, 2);
+    const RenderStats& st = l.stats;
+    const uint64_t expected[kRayKinds] = {st.samples, st.rays - st.samples - st.shadow_rays - st.light_queries,
+                                          st.shadow_rays, st.light_queries};
+    for (int k = 0; k < kRayKinds; ++k)
+      EXPECT_EQ(replay_queries(scene->geometry, l.logs, 2, true, RayKind(k)).rays, expected[k]) << "kind " << k;
+  }
 }
 
 }  // namespace

@@ -12,6 +12,7 @@ command -v python3 >/dev/null || { echo "skip: python3 needed to check the JSON"
   { rc=$?; cat "$T/out" "$T/err"; fail "lumis bench --quick exited $rc"; }
 grep -q "Raw Embree" "$T/out" || fail "no raw-throughput table: $(cat "$T/out")"
 grep -q "Targets" "$T/out" || fail "no targets section: $(cat "$T/out")"
+grep -q "Embree by kind of ray" "$T/out" || fail "no per-kind table: $(cat "$T/out")"
 
 python3 - "$T/bench.json" <<'PY' || fail "JSON report: $(cat "$T/bench.json")"
 import json, sys
@@ -31,8 +32,12 @@ for s in doc["scenes"]:
     assert s["memory"]["peak_rss_bytes"] > 0
     raw = s["raw_rays_per_s"]
     for k in ("camera_intersect1", "camera_intersect16", "bounce_intersect1", "bounce_intersect16",
-              "shadow_occluded1", "shadow_occluded16", "light_query"):
+              "shadow_occluded1", "shadow_occluded16", "light_query", "bounce_intersect1_shuffled",
+              "shadow_occluded1_shuffled"):
         assert raw[k] > 0, (s["name"], k, raw[k])
+    own = s["own_rays_per_s"]  # nee_mis's own rays by kind: camera, bounce and shadow rays, no light queries
+    assert own["integrator"] == "nee_mis", own
+    assert own["camera"] > 0 and own["bounce"] > 0 and own["shadow"] > 0 and own["light_query"] == 0, own
     assert {v["integrator"] for v in s["variants"]} == variants
     for v in s["variants"]:
         kinds = v["rays_by_kind"]
