@@ -55,8 +55,9 @@ struct RawThroughput {
   Rate camera1, camera16;   ///< rtcIntersect1 / rtcIntersect16 (coherent 4x4 pixel packets)
   Rate bounce1, bounce16;   ///< rtcIntersect1 / rtcIntersect16 (incoherent)
   Rate shadow1, shadow16;   ///< rtcOccluded1 / rtcOccluded16
-  /// rtcIntersect1 / rtcOccluded1 on the same bounce and shadow rays in a random order: made in camera-ray order,
-  /// the rays above come up to 4 spp x 16 in a row from one 4x4-pixel block, a locality that this removes
+  /// rtcIntersect1 / rtcOccluded1 on the same bounce and shadow rays in a random order. Made in camera-ray order,
+  /// the rays above come all samples of a 4x4-pixel block in a row (8 spp x 16 = 128 rays with the default 2^19
+  /// rays at 256x256), a locality that this removes.
   Rate bounce1_shuffled, shadow1_shuffled;
   Rate light_query;         ///< Geometry::all_light_hits on the bounce rays (the `mis` density query)
   Rate bounce_lumis;        ///< Geometry::intersect on the bounce rays: rtcIntersect1 plus lumis's Hit record
