@@ -2,8 +2,8 @@
 # The hit-record prefetches exist in the built binary (docs/performance.md, thirteenth round). GCC counts
 # __builtin_prefetch as free of side effects: its IPA pure-const pass found a void helper that only prefetched
 # "const" and deleted every call to it, so for twelve rounds the binary had no prefetch while the code had several.
-# Passes when a prefetcht0 sits in a function that is not a prefetch helper (the helpers were inlined), or when a
-# prefetch helper holding one is called. Deterministic (no false failures). x86-64 with objdump only; otherwise
+# Passes when a prefetcht0 sits in a function that is not a prefetch helper (prefetch_line, prefetch_hit_*: they
+# were inlined), or when such a helper holds one and is called (not prefetches_hit_records, a query of the flag). Deterministic (no false failures). x86-64 with objdump only; otherwise
 # skipped (exit 77). Usage: prefetch.sh path/to/lumis
 set -uo pipefail
 LUMIS=${1:?usage: prefetch.sh path/to/lumis}
@@ -13,9 +13,9 @@ command -v objdump >/dev/null || { echo "skip: objdump (binutils) missing"; exit
 
 objdump -d --no-show-raw-insn -C "$LUMIS" >"$T/asm" || fail "objdump -d $LUMIS failed"
 awk '
-  /^[0-9a-f]+ <.*>:$/ { fn = $0; helper = fn ~ /prefetch/ }
+  /^[0-9a-f]+ <.*>:$/ { fn = $0; helper = fn ~ /prefetch_(line|hit_)/ }
   /\tprefetcht0 / { if (helper) in_helper++; else inlined++ }
-  /\tcall .*prefetch/ { calls++ }
+  /\tcall .*prefetch_(line|hit_)/ { calls++ }
   END {
     printf "prefetcht0: %d inlined, %d in helpers; calls to helpers: %d\n", inlined, in_helper, calls
     exit !(inlined > 0 || (in_helper > 0 && calls > 0))
