@@ -105,13 +105,17 @@ BenchVariantResult render_once(const Scene& scene, int threads, bool camera_pack
   return v;
 }
 
-// Seconds Embree takes for this mix of rays at the given rates (wall or CPU); 0 when a needed rate is missing.
-double raw_seconds(const BenchVariantResult& v, const RawThroughput& raw, bool packets, bool cpu) {
+// Seconds Embree takes for this mix of rays at the given rates (wall or CPU; single rays with the bounce and shadow
+// rays in a random order when shuffled); 0 when a needed rate is missing.
+double raw_seconds(const BenchVariantResult& v, const RawThroughput& raw, bool packets, bool cpu,
+                   bool shuffled = false) {
   const auto pick = [cpu](const Rate& r) { return cpu ? r.cpu : r.wall; };
+  const Rate& bounce = shuffled ? raw.bounce1_shuffled : packets ? raw.bounce16 : raw.bounce1;
+  const Rate& shadow = shuffled ? raw.shadow1_shuffled : packets ? raw.shadow16 : raw.shadow1;
   const std::pair<uint64_t, double> parts[] = {
       {v.camera_rays, pick(packets ? raw.camera16 : raw.camera1)},
-      {v.bounce_rays, pick(packets ? raw.bounce16 : raw.bounce1)},
-      {v.shadow_rays, pick(packets ? raw.shadow16 : raw.shadow1)},
+      {v.bounce_rays, pick(bounce)},
+      {v.shadow_rays, pick(shadow)},
       {v.light_queries, pick(raw.light_query)}};
   double s = 0;
   for (const auto& [n, rate] : parts) {
@@ -132,7 +136,7 @@ struct Replays {
 BenchVariantResult aggregate(const std::vector<BenchVariantResult>& runs, const std::vector<RawThroughput>& raws,
                              const RawThroughput& raw_median, const std::vector<Replays>& replays) {
   BenchVariantResult v = runs.back();
-  std::vector<double> wall, cpu, ratio[4], own, share;
+  std::vector<double> wall, cpu, ratio[4], shuffled, own, share;
   for (size_t r = 0; r < runs.size(); ++r) {
     wall.push_back(runs[r].seconds);
     cpu.push_back(runs[r].cpu_seconds);
@@ -150,6 +154,8 @@ BenchVariantResult aggregate(const std::vector<BenchVariantResult>& runs, const 
       const double own_s = use_cpu ? runs[r].cpu_seconds : runs[r].seconds;
       if (raw_s > 0 && own_s > 0) ratio[k].push_back(raw_s / own_s);
     }
+    const double shuffled_s = raw_seconds(v, raws[r], false, false, true);
+    if (shuffled_s > 0 && runs[r].seconds > 0) shuffled.push_back(shuffled_s / runs[r].seconds);
   }
   v.seconds = median(wall);
   v.cpu_seconds = median(cpu);
@@ -163,6 +169,7 @@ BenchVariantResult aggregate(const std::vector<BenchVariantResult>& runs, const 
   v.ratio_cpu = median(ratio[2]);
   v.ratio_cpu_packets = median(ratio[3]);
   v.ratio_own = median(own);
+  v.ratio_shuffled = median(shuffled);
   v.embree_share = median(share);
   return v;
 }

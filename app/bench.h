@@ -124,6 +124,9 @@ struct BenchVariantResult {
   /// Against the render's own rays: lumis rays/s over single-ray Embree calls' rays/s on exactly the rays this
   /// render traced (its queries logged, then replayed without shading), wall clock (median).
   double ratio_own = 0;
+  /// Against the raw rays with the bounce and shadow rays in a random order (RawThroughput::bounce1_shuffled,
+  /// shadow1_shuffled; camera rays and light queries as in `ratio`): wall clock, median.
+  double ratio_shuffled = 0;
   /// Embree's share of the render: the replay of the render's calls as it made them (its packets) over its time.
   double embree_share = 0;
   /// Rays in the replayed logs: `rays`, unless a render of more than 2^22 rays was logged at fewer samples per

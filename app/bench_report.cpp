@@ -40,6 +40,8 @@ std::vector<Target> targets(const BenchReport& r) {
       {
         out.push_back({"nee_mis rays/s over raw Embree rays/s for the same mix", s.name, v->ratio, 0.7, true});
         out.push_back({"  same, against the render's own rays replayed (own)", s.name, v->ratio_own, 0.7, true});
+        out.push_back({"  same, against the raw rays in a random order (shuffled)", s.name, v->ratio_shuffled, 0.7,
+                       true});
       }
     if (s.threads > 1 && s.samples_per_s_1 > 0)
     {
@@ -238,6 +240,7 @@ std::string bench_report_json(const BenchReport& r) {
                     {"ratio_to_raw_cpu", v.ratio_cpu},
                     {"ratio_to_raw_packets_cpu", v.ratio_cpu_packets},
                     {"ratio_to_own_rays", v.ratio_own},
+                    {"ratio_to_raw_shuffled", v.ratio_shuffled},
                     {"embree_share", v.embree_share},
                     {"replay_rays", v.replay_rays}});
     j["variants"] = vs;

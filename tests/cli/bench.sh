@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Smoke test of `lumis bench`: tiny settings (--quick: a 20k-triangle generated room and cornell-sphere at 32x32,
-# 1 spp), the JSON report parses and has every field, the rays split by kind add up, the replay of each render's
-# own rays holds all of them, and --write-large-scene writes
+# 1 spp), the JSON report parses and has every field, the rays split by kind add up, the ratios to the raw rates
+# follow from the report's own rates and counts, the replay of each render's own rays holds all of them, and
+# --write-large-scene writes
 # a glTF that `lumis render` loads. Speeds are not checked (shared machines). Usage: bench.sh path/to/lumis
 set -uo pipefail
 LUMIS=${1:?usage: bench.sh path/to/lumis}
@@ -44,8 +45,18 @@ for s in doc["scenes"]:
         assert sum(kinds.values()) == v["rays"], (s["name"], v)
         assert kinds["camera"] == v["samples"] == 32 * 32, (s["name"], v)
         for k in ("samples_per_s", "rays_per_s", "raw_mix_rays_per_s", "ratio_to_raw", "ratio_to_raw_packets",
-                  "ratio_to_own_rays", "embree_share"):
+                  "ratio_to_own_rays", "ratio_to_raw_shuffled", "embree_share"):
             assert v[k] > 0, (s["name"], v["integrator"], k)
+        # One repetition (--quick): each ratio is Embree's time for the render's mix of rays at the raw rates
+        # above over the render's time, the shuffled one with the bounce and shadow rays' shuffled rates.
+        for key, bounce, shadow in (("ratio_to_raw", "bounce_intersect1", "shadow_occluded1"),
+                                    ("ratio_to_raw_shuffled", "bounce_intersect1_shuffled",
+                                     "shadow_occluded1_shuffled")):
+            rates = {"camera": raw["camera_intersect1"], "bounce": raw[bounce], "shadow": raw[shadow],
+                     "light_query": raw["light_query"]}
+            embree_s = sum(n / rates[k] for k, n in kinds.items() if n)
+            expected = embree_s * v["rays_per_s"] / v["rays"]
+            assert abs(v[key] - expected) <= 1e-9 * expected, (s["name"], v["integrator"], key, v[key], expected)
         assert v["replay_rays"] == v["rays"], (s["name"], v["integrator"], "the replay must hold every ray")
     nee = next(v for v in s["variants"] if v["integrator"] == "nee_mis")
     mis = next(v for v in s["variants"] if v["integrator"] == "mis")
