@@ -147,13 +147,11 @@ std::unique_ptr<Scene> load_json_scene(const std::string& text, const std::strin
   if (auto l = root.find("lights")) lights = l->elements();
   for (const auto& s : shapes) builder.add_shape(s);
   for (const auto& l : lights) builder.add_light(l);
+  // A malformed camera is named before an empty scene: each section's own errors come first.
+  if (auto c = root.find("camera")) parse_camera(*c, scene->camera);
   if (shapes.empty() && lights.empty()) throw SceneError(path, "", "scene is empty: it has no shapes and no lights");
-
-  if (auto c = root.find("camera")) {
-    parse_camera(*c, scene->camera);
-  } else {
+  if (!root.has("camera"))
     scene->camera = frame_bounds(builder.bounds(), float(scene->settings.width) / float(scene->settings.height));
-  }
   check_extent(*scene, path, root.has("camera") ? "/camera/from" : "");
   scene->finalize();
   return scene;

@@ -244,6 +244,10 @@ TEST(SceneLoaderErrors, EmptyScene) {
                      "scene is empty");
 }
 
+TEST(SceneLoaderErrors, MalformedCameraIsNamedBeforeAnEmptyScene) {
+  EXPECT_SCENE_ERROR(R"({"camera": 3})", "/camera", "expected an object");
+}
+
 TEST(SceneLoaderErrors, MissingSceneFile) {
   const std::string path = (test_dir() / "absent.json").string();
   try {
