@@ -3,8 +3,9 @@
 # __builtin_prefetch as free of side effects: its IPA pure-const pass found a void helper that only prefetched
 # "const" and deleted every call to it, so for twelve rounds the binary had no prefetch while the code had several.
 # Passes when a prefetcht0 sits in a function that is not a prefetch helper (prefetch_line, prefetch_hit_*: they
-# were inlined), or when such a helper holds one and is called (not prefetches_hit_records, a query of the flag). Deterministic (no false failures). x86-64 with objdump only; otherwise
-# skipped (exit 77). Usage: prefetch.sh path/to/lumis
+# were inlined), or when such a helper holds one and is called (not prefetches_hit_records, a query of the flag).
+# Deterministic (no false failures). x86-64 with objdump only; otherwise skipped (exit 77).
+# Usage: prefetch.sh path/to/lumis
 set -uo pipefail
 LUMIS=${1:?usage: prefetch.sh path/to/lumis}
 source "$(dirname "$0")/common.bash"
