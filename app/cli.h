@@ -2,6 +2,7 @@
 // (0 success, 1 scene/IO error, 2 usage error).
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -18,6 +19,20 @@ struct RenderOverrides {
   std::optional<std::string> integrator, sampler, light_selection, mis_heuristic, uniform_measure;
   std::optional<float> time, exposure, mis_light_probability;
 };
+
+/// CLI11 check that a number option is finite: CLI::Range lets NaN through (every comparison with it is false).
+inline const CLI::Validator kFiniteNumber(
+    [](std::string& text) -> std::string {
+      // CLI11 runs checks before conversion: parse as the option will (a whole string that is a number).
+      try {
+        size_t used = 0;
+        const double v = std::stod(text, &used);
+        if (used == text.size() && !std::isfinite(v)) return "expected a finite number, found " + text;
+      } catch (const std::exception&) {  // not a number: the option's own conversion reports it
+      }
+      return {};
+    },
+    "FINITE");
 
 /// Register the override options on a CLI11 subcommand.
 void add_render_overrides(CLI::App& cmd, RenderOverrides& o);

@@ -19,12 +19,27 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
   cmd.add_option("--light-selection", o.light_selection, "uniform | power | importance");
   cmd.add_option("--mis-heuristic", o.mis_heuristic, "balance | power");
   cmd.add_option("--mis-light-probability", o.mis_light_probability,
-                 "For --integrator mis: probability c_l of the light strategy (default 0.5)")
-      ->check(CLI::Range(0.0f, 1.0f));
+                 "For --integrator mis: probability c_l of the light strategy, in [0, 1) (default 0.5)")
+      ->check(kFiniteNumber)
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            // 1 is left out: with light sampling alone, directions no light covers (indirect light) are never
+            // drawn, and the estimate loses that light.
+            try {
+              const double v = std::stod(text);
+              if (!(v >= 0 && v < 1)) return "expected a probability in [0, 1), found " + text;
+            } catch (const std::exception&) {
+            }
+            return {};
+          },
+          "in [0, 1)"));
   cmd.add_option("--uniform-measure", o.uniform_measure, "theta-phi | solid-angle (for --integrator uniform)");
-  cmd.add_option("--time", o.time, "Stop after this many seconds (writes what was rendered)")
-      ->check(CLI::Range(1e-3f, 1e7f));
-  cmd.add_option("--exposure", o.exposure, "Exposure in stops for PNG/JPG output");
+  cmd.add_option("--time", o.time, "Stop after this many seconds (writes what was rendered; 0 = no time budget)")
+      ->check(kFiniteNumber)
+      ->check(CLI::Range(0.0f, 1e7f));
+  cmd.add_option("--exposure", o.exposure, "Exposure in stops for PNG/JPG output")
+      ->check(kFiniteNumber)
+      ->check(CLI::Range(-64.0f, 64.0f));
 }
 
 void apply_overrides(const RenderOverrides& o, RenderSettings& s) {

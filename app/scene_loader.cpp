@@ -122,9 +122,13 @@ void parse_render(const JsonNode& node, RenderSettings& s) {
     s.mis_heuristic = parse_enum<MisHeuristic>(*v, {"balance", "power"}, "mis_heuristic");
   if (auto v = node.find("uniform_measure"))
     s.uniform_measure = parse_enum<UniformMeasure>(*v, {"theta_phi", "solid_angle"}, "uniform_measure");
-  if (auto v = node.find("mis_light_probability")) s.mis_light_probability = v->as_float(0, 1);
+  if (auto v = node.find("mis_light_probability")) {
+    s.mis_light_probability = v->as_float(0, 1);
+    // Light sampling alone never draws the directions no light covers: the image would lose indirect light.
+    if (!(s.mis_light_probability < 1)) v->fail("expected a probability in [0, 1) (1 would lose indirect light)");
+  }
   if (auto v = node.find("time")) s.time_budget = v->as_float(0);
-  if (auto v = node.find("exposure")) s.exposure = v->as_float();
+  if (auto v = node.find("exposure")) s.exposure = v->as_float(-64, 64);
 }
 
 std::unique_ptr<Scene> load_json_scene(const std::string& text, const std::string& path) {
@@ -132,7 +136,8 @@ std::unique_ptr<Scene> load_json_scene(const std::string& text, const std::strin
   const JsonNode root(doc, "", path);
   root.expect_object({"version", "camera", "film", "render", "materials", "shapes", "lights"});
   if (auto v = root.find("version")) {
-    if (!(v->value().is_number_integer() || v->value().is_number_unsigned()) || v->value().get<int64_t>() != 1)
+    // 1 or 1.0: a whole number, as the other integer keys accept.
+    if (!v->value().is_number() || v->value().get<double>() != 1.0)
       v->fail("unsupported scene format version: expected 1, found " + describe_json(v->value()));
   }
   auto scene = std::make_unique<Scene>();
