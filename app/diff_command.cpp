@@ -59,7 +59,7 @@ int run_diff(const DiffArgs& args) {
     try {
       size_t used = 0;
       opt.psnr_peak = std::stod(args.psnr_peak, &used);
-      if (used != args.psnr_peak.size() || !(opt.psnr_peak > 0)) throw std::invalid_argument("");
+      if (used != args.psnr_peak.size() || !(opt.psnr_peak > 0) || !std::isfinite(opt.psnr_peak)) throw std::invalid_argument("");
     } catch (const std::exception&) {
       std::cerr << "lumis diff: --psnr-peak: expected a positive number or 'max', got '" << args.psnr_peak << "'\n";
       return 2;
@@ -111,12 +111,15 @@ int run_diff(const DiffArgs& args) {
     if (m.nonfinite) std::printf("  %llu pixel-channels are NaN or infinite\n",
                                  static_cast<unsigned long long>(m.nonfinite));
     if (z) {
-      std::printf("z-test: %llu of %llu pixel-channels rejected (%.4g%%), min p %.3g", 
+      std::printf("z-test: %llu of %llu pixel-channels rejected (%.4g%%), min p %.3g",
                   static_cast<unsigned long long>(z->rejected), static_cast<unsigned long long>(z->tested),
                   100 * z->failing_fraction(), z->min_p);
       if (z->worst_x >= 0) std::printf(" at (%d, %d) %c", z->worst_x, z->worst_y, "RGB"[z->worst_channel]);
       std::printf(", Sidak level %.3g for alpha %g, variance of %s: %s\n", z->per_test_alpha, args.alpha,
                   z->used_a_variance ? "A + B" : "B", z->passed ? "pass" : "FAIL");
+      if (z->nonfinite)
+        std::printf("  %llu pixel-channels rejected without a p-value: a value or variance is NaN, infinite or "
+                    "negative\n", static_cast<unsigned long long>(z->nonfinite));
       if (z->zero_variance) std::printf("  %llu pixel-channels with zero variance compared to 1e-5 relative\n",
                                         static_cast<unsigned long long>(z->zero_variance));
     }
@@ -140,8 +143,10 @@ void register_diff_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember(metric_names()))
       ->capture_default_str();
   cmd->add_option("--threshold", args->threshold,
-                  "Fail (exit 1) when the metric exceeds this value (psnr: when it is below)");
+                  "Fail (exit 1) when the metric exceeds this value (psnr: when it is below)")
+      ->check(kFiniteNumber);
   cmd->add_option("--tolerance", args->tolerance, "Absolute error per channel for the 'over' metric")
+      ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--psnr-peak", args->psnr_peak, "PSNR peak: a number, or 'max' for the reference's largest value")
@@ -151,6 +156,7 @@ void register_diff_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--z-test", args->z_test,
                 "Per-pixel z-test against B's variance channels (plus A's when present); fail on any rejection");
   cmd->add_option("--alpha", args->alpha, "Family-wise significance level of the z-test")
+      ->check(kFiniteNumber)
       ->check(CLI::Range(1e-12, 0.5))
       ->capture_default_str();
   cmd->callback([args, &exit_code] { exit_code = run_diff(*args); });

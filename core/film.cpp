@@ -1,5 +1,8 @@
 #include "core/film.h"
 
+#include <algorithm>
+#include <limits>
+
 namespace lumis {
 
 Film::Film(int width, int height, FilmOptions options)
@@ -40,7 +43,8 @@ Color Film::variance_of_mean(int x, int y) const {
   for (int c = 0; c < 3; ++c) {
     const double m = p.sum[c] / p.n;
     const double var = std::max(0.0, (p.sum_sq[c] - p.n * m * m) / (p.n - 1));
-    v[c] = static_cast<float>(var / p.n);
+    // Finite samples near float's range have a variance beyond it: written as the largest float, never Inf.
+    v[c] = static_cast<float>(std::min(var / p.n, static_cast<double>(std::numeric_limits<float>::max())));
   }
   return v;
 }

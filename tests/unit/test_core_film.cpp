@@ -32,6 +32,17 @@ TEST(Film, DropsAndCountsNonFiniteSamples) {
   for (float v : film.to_image().data) EXPECT_TRUE(std::isfinite(v));
 }
 
+TEST(Film, VarianceBeyondFloatRangeIsTheLargestFloatNotInf) {
+  // Finite samples near float's largest value: their squares and their variance exceed float's range.
+  Film film(1, 1);
+  film.add(0, 0, Color(0.0f));
+  film.add(0, 0, Color(3e38f));
+  EXPECT_EQ(film.dropped(), 0u);
+  EXPECT_FLOAT_EQ(film.mean(0, 0)[0], 1.5e38f);
+  EXPECT_EQ(film.variance_of_mean(0, 0)[0], std::numeric_limits<float>::max());
+  for (float v : film.to_image().data) EXPECT_TRUE(std::isfinite(v));
+}
+
 TEST(Film, AovsIgnoreNonFiniteValues) {
   Film film(1, 1, FilmOptions{true, true, true, true});
   const float nan = std::numeric_limits<float>::quiet_NaN();
