@@ -97,7 +97,9 @@ class ImageCache {
     if (img.bufferView < 0 && !img.uri.empty()) {
       const std::string path = resolve_uri(ctx_, img.uri);
       try {
-        return to_rgba(read_image(path, srgb));
+        Image decoded = read_image(path, srgb);
+        check_texels(decoded, path, /*allow_negative=*/!srgb);  // colour textures (sRGB ones) are >= 0
+        return to_rgba(std::move(decoded));
       } catch (const ImageError& e) {
         ctx_.fail(at, "cannot load image '" + img.uri + "': " + e.what());
       }
@@ -148,7 +150,9 @@ WrapMode wrap_mode(const Context& ctx, int v, const std::string& where) {
 }
 
 float number(const Context& ctx, const tinygltf::Value& v, const std::string& where) {
-  if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble())) ctx.fail(where, "expected a finite number");
+  // Finite as a float too: 1e39 is a finite double.
+  if (!v.IsNumber() || !std::isfinite(static_cast<float>(v.GetNumberAsDouble())))
+    ctx.fail(where, "expected a finite number (within float's range)");
   return static_cast<float>(v.GetNumberAsDouble());
 }
 
@@ -204,7 +208,7 @@ Texture make_texture(Context& ctx, ImageCache& images, int index, int tex_coord,
 Color color3(const Context& ctx, const std::vector<double>& v, const std::string& where) {
   if (v.size() != 3) ctx.fail(where, "expected 3 numbers, got " + std::to_string(v.size()));
   for (double x : v)
-    if (!std::isfinite(x)) ctx.fail(where, "expected finite numbers");
+    if (!std::isfinite(static_cast<float>(x))) ctx.fail(where, "expected finite numbers (within float's range)");
   return {float(v[0]), float(v[1]), float(v[2])};
 }
 
@@ -240,7 +244,7 @@ std::vector<GltfMaterial> convert_materials(Context& ctx) {
     p.base_color = color3(ctx, rgb, at + ".pbrMetallicRoughness.baseColorFactor");
     p.base_alpha = static_cast<float>(pbr.baseColorFactor[3]);
     p.metallic = static_cast<float>(pbr.metallicFactor);
-    p.roughness = static_cast<float>(pbr.roughnessFactor);
+    p.roughness = static_cast<float>(pbr.roughnessFactor);  // out of [0, 1]: clamped where used (make_pbr_bsdf)
     if (!std::isfinite(p.base_alpha) || !std::isfinite(p.metallic) || !std::isfinite(p.roughness))
       ctx.fail(at + ".pbrMetallicRoughness", "factors must be finite numbers");
     if (pbr.baseColorTexture.index >= 0)
@@ -264,7 +268,11 @@ std::vector<GltfMaterial> convert_materials(Context& ctx) {
         strength = number(ctx, it->second.Get("emissiveStrength"), sat);
       if (strength < 0) ctx.fail(sat, "must be >= 0");
     }
-    p.emissive = color3(ctx, m.emissiveFactor, at + ".emissiveFactor") * strength;
+    const Color emissive_factor = color3(ctx, m.emissiveFactor, at + ".emissiveFactor");
+    if (min_component(emissive_factor) < 0) ctx.fail(at + ".emissiveFactor", "expected numbers >= 0");
+    p.emissive = emissive_factor * strength;
+    if (!is_finite(p.emissive))
+      ctx.fail(at + ".emissiveFactor", "times emissiveStrength overflows float's range");
     if (m.emissiveTexture.index >= 0)
       p.emissive_texture = make_texture(ctx, images, m.emissiveTexture.index, m.emissiveTexture.texCoord,
                                         m.emissiveTexture.extensions, true, at + ".emissiveTexture");

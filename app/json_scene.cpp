@@ -24,7 +24,9 @@ Texture JsonSceneBuilder::load_texture(const JsonNode& node, bool srgb) {
   auto& image = images_[{path, srgb}];
   if (!image) {
     try {
-      image = std::make_shared<const Image>(read_image(path, srgb));
+      Image img = read_image(path, srgb);
+      check_texels(img, path, /*allow_negative=*/!srgb);  // colour textures (sRGB ones) are >= 0
+      image = std::make_shared<const Image>(std::move(img));
     } catch (const ImageError& e) {
       node.fail(std::string("cannot read image: ") + e.what());
     }

@@ -102,6 +102,29 @@ void JsonSceneBuilder::add_quad_shape(const JsonNode& node) {
   add_mesh(std::move(mesh), emission, TriangleSampling::SphericalTriangle);
 }
 
+namespace {
+
+/// Triangles without area (a repeated corner, or collinear corners) have no surface to hit or to sample: dropped
+/// with a warning, as glTF's are; a mesh with none left is an error.
+void drop_degenerate_triangles(const JsonNode& indices, TriangleMesh& mesh) {
+  std::vector<uint32_t> kept;
+  kept.reserve(mesh.indices.size());
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+    const Vec3 e = cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+    if (e.x == 0 && e.y == 0 && e.z == 0) continue;
+    kept.insert(kept.end(), {a, b, c});
+  }
+  const size_t dropped = (mesh.indices.size() - kept.size()) / 3;
+  if (kept.empty()) indices.fail("every triangle is degenerate (zero area): the mesh has no surface");
+  if (dropped > 0)
+    std::cerr << indices.file() << ":" << indices.pointer() << ": warning: degenerate triangles dropped (" << dropped
+              << ")\n";
+  mesh.indices = std::move(kept);
+}
+
+}  // namespace
+
 void JsonSceneBuilder::add_mesh_shape(const JsonNode& node) {
   node.expect_object({"type", "name", "positions", "indices", "normals", "uvs", "material", "emission", "sampling",
                       "transform"});
@@ -135,6 +158,7 @@ void JsonSceneBuilder::add_mesh_shape(const JsonNode& node) {
     if (m.determinant3() < 0)
       for (size_t i = 0; i < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
   }
+  drop_degenerate_triangles(node["indices"], mesh);
   for (auto& n : mesh.normals) n = normalize(n);
   mesh.material = material_reference(node["material"]);
   MaterialEmission emission;
@@ -144,7 +168,8 @@ void JsonSceneBuilder::add_mesh_shape(const JsonNode& node) {
 }
 
 void JsonSceneBuilder::add_gltf_shape(const JsonNode& node) {
-  node.expect_object({"type", "file", "transform", "materials", "sampling"});
+  node.expect_object({"type", "name", "file", "transform", "materials", "sampling"});
+  if (auto n = node.find("name")) n->as_string();  // a label for the reader: the meshes keep the file's names
   const std::string path = resolve_path(node["file"]);
   const Mat4 transform = node.find("transform") ? parse_transform(node["transform"]) : Mat4::identity();
   const TriangleSampling sampling = mesh_sampling(node);
@@ -268,7 +293,9 @@ void JsonSceneBuilder::add_environment(const JsonNode& node) {
   const float rotation = node.find("rotation") ? node["rotation"].as_float() : 0.0f;
   std::shared_ptr<const Image> image;
   try {
-    image = std::make_shared<const Image>(read_image(path, false));
+    Image img = read_image(path, false);
+    check_texels(img, path, /*allow_negative=*/false);  // radiance
+    image = std::make_shared<const Image>(std::move(img));
   } catch (const ImageError& e) {
     file.fail(std::string("cannot read image: ") + e.what());
   }

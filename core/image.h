@@ -1,6 +1,7 @@
 // A float image with named channels (R, G, B, then optional AOV channels), row-major, top row first.
 #pragma once
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -38,5 +39,19 @@ struct Image {
 struct ImageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+/// Throws ImageError "<path>: pixel (x, y) channel C is V: expected ..." at the first texel that is NaN or
+/// infinite, or (unless allow_negative) negative: lights and colours read from files must be finite and >= 0.
+inline void check_texels(const Image& img, const std::string& path, bool allow_negative) {
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < img.channels; ++c) {
+        const float v = img.at(x, y, c);
+        if (std::isfinite(v) && (allow_negative || v >= 0)) continue;
+        throw ImageError(path + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") channel " +
+                         img.channel_names[c] + " is " + std::to_string(v) + ": expected finite values" +
+                         (allow_negative ? "" : " >= 0"));
+      }
+}
 
 }  // namespace lumis

@@ -2,7 +2,11 @@
 // and the telling part of the message (scenes that load: test_scene_loader.cpp).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <string>
+
+#include "core/image_io.h"
 
 #include "tests/app/scene_loader_test_util.h"
 
@@ -235,6 +239,36 @@ TEST(SceneLoaderErrors, EnvironmentMapMustBeLinear) {
   const std::string png = kAssets + "/gltf/BoxWithSpaces/glTF/glTF Logo With Spaces.png";
   EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "file": ")" + png + R"("}]})", "/lights/0/file",
                      "must be a linear .exr or .hdr file");
+}
+
+// An EXR of 2x2 grey texels with texel (1, 1) set to `bad` in R, written next to the test's scene.
+std::string exr_with_texel(float bad) {
+  Image img(2, 2, {"R", "G", "B"});
+  for (float& v : img.data) v = 0.5f;
+  img.at(1, 1, 0) = bad;
+  const std::string path = (test_dir() / "map.exr").string();
+  write_image(path, img);
+  return path;
+}
+
+TEST(SceneLoaderErrors, EnvironmentMapTexelsMustBeFiniteAndNonNegative) {
+  for (float bad : {-1.0f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    const std::string map = exr_with_texel(bad);
+    EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "file": ")" + map + R"("}]})", "/lights/0/file",
+                       "pixel (1, 1) channel R is");
+  }
+}
+
+TEST(SceneLoaderErrors, ColourTextureTexelsMustBeFiniteAndNonNegative) {
+  for (float bad : {-1.0f, std::numeric_limits<float>::quiet_NaN()}) {
+    const std::string map = exr_with_texel(bad);
+    for (const char* key : {"base_color_texture", "emissive_texture"})
+      EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "pbr", ")" + std::string(key) + R"(": ")" + map + R"("})"),
+                         "/materials/m/" + std::string(key), "expected finite values >= 0");
+  }
+  // A non-colour texture may hold negative numbers, never NaN.
+  EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "pbr", "normal_texture": ")" + exr_with_texel(NAN) + R"("})"),
+                     "/materials/m/normal_texture", "expected finite values");
 }
 
 // Errors: whole files.

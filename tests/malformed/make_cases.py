@@ -131,6 +131,19 @@ case("json_camera_no_direction", ".json", dump(scene(camera={"from": [0, 1, 0], 
 case("json_zero_fov", ".json", dump(scene(camera={"from": [0, 1, 4], "to": [0, 1, 0], "fov": 0})), "/camera/fov")
 case("cli_zero_spp", ".json", dump(BASE), "--spp: Value 0 not in range", 2, "--spp 0")
 case("cli_absurd_width", ".json", dump(BASE), "--width", 2, "--width 100000")
+# CLI11's ranges let NaN through (every comparison with it is false): a finite-number check comes first.
+case("cli_nan_light_probability", ".json", dump(BASE), "--mis-light-probability: expected a finite number", 2,
+     "--integrator mis --mis-light-probability nan")
+case("cli_nan_time", ".json", dump(BASE), "--time: expected a finite number", 2, "--time nan")
+case("cli_inf_exposure", ".json", dump(BASE), "--exposure: expected a finite number", 2, "--exposure inf")
+# Light sampling alone never draws directions no light covers: probability 1 would lose indirect light.
+case("cli_light_probability_one", ".json", dump(BASE), "expected a probability in [0, 1)", 2,
+     "--integrator mis --mis-light-probability 1")
+case("json_light_probability_one", ".json", dump(scene(render={"mis_light_probability": 1})),
+     "/render/mis_light_probability: expected a probability in [0, 1)")
+case("json_version_float", ".json", dump(scene(version=1.0)).replace('"version": 1,', '"version": 1.0,', 1), "", 0)
+case("json_exposure_absurd", ".json", dump(scene(render={"exposure": 1000})), "/render/exposure")
+case("cli_time_zero_is_no_budget", ".json", dump(scene(render={"spp": 1, "time": 5})), "", 0, "--time 0")
 # A transform that is finite but sends the mesh to infinity in float.
 case("json_mesh_overflow", ".json",
      dump(scene(shapes=[{"type": "mesh", "positions": [[0, 0, 0], [1e30, 0, 0], [0, 1e30, 0]], "indices": [0, 1, 2],
@@ -320,7 +333,14 @@ case("gltf_degenerate_triangles", ".gltf",
                     indices=(0, 1, 2, 0, 0, 0, 0, 1, 3, 1, 1, 2))), "", 0)
 case("json_degenerate_mesh", ".json",
      dump(scene(shapes=[{"type": "mesh", "positions": [[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0]],
-                         "indices": [0, 1, 2, 0, 0, 0, 0, 1, 3], "material": "grey"}])), "", 0)
+                         "indices": [0, 1, 2, 0, 0, 0, 0, 1, 3], "material": "grey"}])),
+     "/shapes/0/indices: warning: degenerate triangles dropped (2)", 0)
+case("json_gltf_shape_named", ".json",
+     dump(scene(shapes=[{"type": "gltf", "name": "model", "file": "gltf_degenerate_triangles.gltf"}])), "", 0)
+case("json_all_degenerate_mesh", ".json",
+     dump(scene(shapes=[sphere(), {"type": "mesh", "positions": [[0, 0, 0], [1, 0, 0], [2, 0, 0]],
+                                   "indices": [0, 1, 2], "material": "grey", "emission": [1, 1, 1]}])),
+     "/shapes/1/indices: every triangle is degenerate")
 
 
 def hierarchy(nodes):
@@ -362,6 +382,26 @@ case("gltf_texture_index_oob", ".gltf",
      embed(*variant(lambda d: (textured({"uri": "data:image/png;base64," + base64.b64encode(png(1, 1, [9, 9, 9])).decode()})(d),
                                d["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"].update(index=8)))),
      "texture index 8")
+
+# Emission: glTF's emissiveFactor is >= 0, and numbers must fit a float (1e39 is a finite double).
+def emissive(factor, strength=None):
+    def mutate(doc):
+        m = {"emissiveFactor": factor}
+        if strength is not None:
+            m["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": strength}}
+        doc["materials"] = [m]
+        doc["meshes"][0]["primitives"][0]["material"] = 0
+    return mutate
+
+
+case("gltf_emissive_negative", ".gltf", embed(*variant(emissive([-1, -1, -1]))),
+     "materials[0].emissiveFactor: expected numbers >= 0")
+case("gltf_emissive_beyond_float", ".gltf", embed(*variant(emissive([1e39, 1, 1]))),
+     "materials[0].emissiveFactor: expected finite numbers (within float's range)")
+case("gltf_emissive_strength_beyond_float", ".gltf", embed(*variant(emissive([1, 1, 1], 1e39))),
+     "emissiveStrength: expected a finite number (within float's range)")
+case("gltf_emissive_product_overflow", ".gltf", embed(*variant(emissive([1e30, 1, 1], 1e30))),
+     "materials[0].emissiveFactor: times emissiveStrength overflows")
 
 # Empty glTF scenes.
 case("gltf_no_meshes", ".gltf", json.dumps({"asset": {"version": "2.0"}, "scenes": [{"nodes": []}], "scene": 0}),
