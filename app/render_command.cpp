@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -108,9 +109,10 @@ int run_render(const RenderArgs& args) {
   RenderSettings& s = scene->settings;
   std::string out = args.output;
   if (out.empty()) out = std::filesystem::path(scene_path).stem().string() + ".png";
-  const std::string ext = std::filesystem::path(out).extension().string();
+  std::string ext = std::filesystem::path(out).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));  // .PNG as .png
   if (ext != ".exr" && ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".hdr") {
-    std::cerr << "lumis: " << out << ": unsupported output format '" << ext << "' (use .exr, .png, .jpg or .hdr)\n";
+    std::cerr << "lumis: " << out << ": unsupported output format '" << ext << "' (use .exr, .png, .jpg/.jpeg or .hdr)\n";
     return 2;
   }
   std::unique_ptr<Integrator> integrator;

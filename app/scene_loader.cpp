@@ -206,6 +206,7 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path) {
 
 std::unique_ptr<Scene> load_scene(const std::string& path) {
   std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw SceneError(path, "", "is a folder, expected a scene file");
   if (!std::filesystem::is_regular_file(path, ec)) throw SceneError(path, "", "no such scene file");
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });

@@ -32,8 +32,11 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   const int width = film.width(), height = film.height();
   const int tiles_x = (width + kTile - 1) / kTile, tiles_y = (height + kTile - 1) / kTile;
   const int n_tiles = tiles_x * tiles_y;
-  const int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
-  tbb::task_arena arena(std::max(1, threads));
+  // TBB runs at most one thread per core whatever the arena asks for (and warns on stderr when asked for more):
+  // more threads than cores are capped here. The image does not depend on the thread count.
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int threads = options.threads > 0 ? std::min(options.threads, cores) : cores;
+  tbb::task_arena arena(threads);
   FtzObserver ftz(arena);
   Camera camera = scene.camera;
   camera.prepare(width, height);

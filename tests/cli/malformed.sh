@@ -61,12 +61,19 @@ done
 if [ $# -eq 0 ]; then
   run_case missing_scene "$T/no-such-scene.json" 1 "no-such-scene.json"
   mkdir -p "$T/folder.json"
-  run_case directory_scene "$T/folder.json" 1 "folder.json"
+  run_case directory_scene "$T/folder.json" 1 "folder.json: is a folder, expected a scene file"
   cp "$DIR/json_empty_object.json" "$T/unreadable.json"
   chmod 000 "$T/unreadable.json"
   if ! cat "$T/unreadable.json" >/dev/null 2>&1; then   # root reads anything: skip there
     run_case unreadable_scene "$T/unreadable.json" 1 "cannot open"
   fi
+fi
+
+# Output extensions are matched without regard to case (.PNG is a PNG).
+if [ $# -eq 0 ]; then
+  count=$((count + 1))
+  "$LUMIS" render "$DIR/json_version_float.json" -o "$T/upper.PNG" --spp 1 --width 8 --height 8 -q 2>"$T/err" &&
+    [ -s "$T/upper.PNG" ] || bad upper_case_extension "-o upper.PNG was not written"
 fi
 
 echo "$count malformed-input cases, $failures failed"
