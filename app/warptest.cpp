@@ -27,6 +27,8 @@ struct WarpEntry {
   const char* param_help;  ///< what `param` means, or nullptr when unused
   float default_param;
   std::function<Warp(float)> make;
+  float param_lo = 0, param_hi = 0;  ///< the open interval (lo, hi) `param` must lie in; hi is included if hi_closed
+  bool hi_closed = false;
 };
 
 // GGX visible normals are tested for a view direction 45 degrees off the normal, where the visible-normal density is
@@ -77,9 +79,12 @@ const std::vector<WarpEntry>& registry() {
        [](float cos_max) {
          return Warp{[=](Vec2 u) -> std::optional<Vec3> { return sample_spherical_cap(u, cos_max); },
                      [=](Vec3 w) { return double(spherical_cap_pdf(w, cos_max)); }};
-       }},
-      {"ggx_heitz", "alpha", 0.3f, [](float alpha) { return ggx_warp(VndfMethod::Heitz2018, alpha); }},
-      {"ggx_cap", "alpha", 0.3f, [](float alpha) { return ggx_warp(VndfMethod::SphericalCap2023, alpha); }},
+       },
+       -1.0f, 1.0f},
+      {"ggx_heitz", "alpha", 0.3f, [](float alpha) { return ggx_warp(VndfMethod::Heitz2018, alpha); }, 0.0f, 1.0f,
+       true},
+      {"ggx_cap", "alpha", 0.3f, [](float alpha) { return ggx_warp(VndfMethod::SphericalCap2023, alpha); }, 0.0f,
+       1.0f, true},
       {"spherical_triangle", nullptr, 0, [](float) { return spherical_triangle_warp(); }},
   };
   return entries;
@@ -128,14 +133,25 @@ std::vector<std::string> warptest_names() {
 }
 
 int run_warptest(const std::string& name, float param, uint64_t samples, const std::string& out_png,
-                 std::ostream& out) {
+                 std::ostream& out, std::ostream& err) {
   const auto& entries = registry();
   const auto it = std::find_if(entries.begin(), entries.end(), [&](const WarpEntry& e) { return name == e.name; });
   if (it == entries.end()) {
-    out << "warptest: unknown warp '" << name << "'. Valid names:";
-    for (const WarpEntry& e : entries) out << ' ' << e.name;
-    out << '\n';
+    err << "warptest: unknown warp '" << name << "'. Valid names:";
+    for (const WarpEntry& e : entries) err << ' ' << e.name;
+    err << '\n';
     return 2;
+  }
+  if (!std::isnan(param)) {
+    if (!it->param_help) {
+      err << "warptest: " << name << " takes no --param\n";
+      return 2;
+    }
+    if (!(param > it->param_lo && (it->hi_closed ? param <= it->param_hi : param < it->param_hi))) {
+      err << "warptest: --param: " << it->param_help << " of " << name << " must lie in (" << it->param_lo << ", "
+          << it->param_hi << (it->hi_closed ? "]" : ")") << ", found " << param << '\n';
+      return 2;
+    }
   }
   if (std::isnan(param)) param = it->default_param;
   const Warp warp = it->make(param);
@@ -163,7 +179,7 @@ int run_warptest(const std::string& name, float param, uint64_t samples, const s
       write_image(out_png, histogram_picture(h, cfg.cos_theta_bins, cfg.phi_bins));
       out << "  wrote " << out_png << " (left: observed, right: expected)\n";
     } catch (const std::exception& e) {
-      out << "warptest: " << e.what() << '\n';
+      err << "warptest: " << e.what() << '\n';
       return 3;
     }
   }

@@ -19,11 +19,12 @@ void register_warptest_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "warptest", "Chi-square test of a sampling routine against its pdf, with a picture of both histograms");
   cmd->add_option("name", args->name, "Warp to test: " + names)->required();
-  cmd->add_option("--param", args->param, "cos_max for spherical_cap, alpha for ggx_* (default: the routine's own)");
+  cmd->add_option("--param", args->param, "cos_max in (-1, 1) for spherical_cap, alpha in (0, 1] for ggx_* (default: 0.9, 0.3)")
+      ->check(kFiniteNumber);
   cmd->add_option("--samples", args->samples, "Number of samples")->check(CLI::Range(1000ull, 1000000000ull));
   cmd->add_option("-o,--output", args->out, "Histogram picture (PNG), '' for none");
   cmd->callback([args, &exit_code] {
-    const int rc = run_warptest(args->name, args->param, args->samples, args->out, std::cout);
+    const int rc = run_warptest(args->name, args->param, args->samples, args->out, std::cout, std::cerr);
     exit_code = rc == 2 ? 2 : (rc == 0 ? 0 : 1);
   });
 }

@@ -24,7 +24,7 @@ void expect_passes_with_picture(const std::string& name, float param) {
   const auto dir = temp_dir();
   const std::string png = (dir / (name + ".png")).string();
   std::ostringstream out;
-  EXPECT_EQ(run_warptest(name, param, 200'000, png, out), 0) << out.str();
+  EXPECT_EQ(run_warptest(name, param, 200'000, png, out, out), 0) << out.str();
   EXPECT_NE(out.str().find("p-value"), std::string::npos) << out.str();
   ASSERT_TRUE(std::filesystem::exists(png)) << out.str();
   const Image img = read_image(png);
@@ -41,14 +41,31 @@ TEST(Warptest, SphericalCapDefaultAndExplicitParam) {
 TEST(Warptest, GgxHeitzPasses) { expect_passes_with_picture("ggx_heitz", 0.3f); }
 
 TEST(Warptest, UnknownNameListsValidNames) {
-  std::ostringstream out;
-  EXPECT_EQ(run_warptest("no_such_warp", NAN, 1000, "", out), 2);
-  for (const std::string& n : warptest_names()) EXPECT_NE(out.str().find(n), std::string::npos) << n;
+  std::ostringstream out, err;
+  EXPECT_EQ(run_warptest("no_such_warp", NAN, 1000, "", out, err), 2);
+  EXPECT_EQ(out.str(), "");
+  for (const std::string& n : warptest_names()) EXPECT_NE(err.str().find(n), std::string::npos) << n;
+}
+
+// A parameter outside the warp's domain is a usage error (2), not a failed test (1), and so is one given to a warp
+// that takes none; the domain's edges are outside it except alpha = 1.
+TEST(Warptest, ParamOutsideTheDomainIsAUsageError) {
+  const std::pair<const char*, float> bad[] = {{"spherical_cap", 1.0f},  {"spherical_cap", -1.0f},
+                                               {"spherical_cap", 2.0f},  {"ggx_cap", 0.0f},
+                                               {"ggx_heitz", -0.3f},     {"ggx_cap", 1.5f},
+                                               {"cosine_hemisphere", 0.5f}};
+  for (const auto& [name, param] : bad) {
+    std::ostringstream out, err;
+    EXPECT_EQ(run_warptest(name, param, 1000, "", out, err), 2) << name << " " << param;
+    EXPECT_NE(err.str().find("warptest:"), std::string::npos) << err.str();
+  }
+  std::ostringstream out, err;
+  EXPECT_EQ(run_warptest("ggx_cap", 1.0f, 100'000, "", out, err), 0) << out.str() << err.str();
 }
 
 TEST(Warptest, NoPictureWhenPathEmpty) {
   std::ostringstream out;
-  EXPECT_EQ(run_warptest("uniform_sphere", NAN, 100'000, "", out), 0) << out.str();
+  EXPECT_EQ(run_warptest("uniform_sphere", NAN, 100'000, "", out, out), 0) << out.str();
   EXPECT_EQ(out.str().find("wrote"), std::string::npos);
 }
 
