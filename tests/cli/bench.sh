@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Smoke test of `lumis bench`: tiny settings (--quick: a 20k-triangle generated room and cornell-sphere at 32x32,
 # 1 spp), the JSON report parses and has every field, the rays split by kind add up, the ratios to the raw rates
-# follow from the report's own rates and counts, the replay of each render's own rays holds all of them, and
-# --write-large-scene writes
-# a glTF that `lumis render` loads. Speeds are not checked (shared machines). Usage: bench.sh path/to/lumis
+# follow from the report's own rates and counts, the replay of each render's own rays holds all of them,
+# --write-large-scene writes a glTF that `lumis render` loads, and its usage errors (a name other than .glb, an
+# --assets folder that does not exist) exit 2. Speeds are not checked (shared machines). Usage: bench.sh path/to/lumis
 set -uo pipefail
 LUMIS=${1:?usage: bench.sh path/to/lumis}
 source "$(dirname "$0")/common.bash"
@@ -77,6 +77,16 @@ PY
 [ -s "$T/large.glb" ] || fail "no .glb written"
 "$LUMIS" render "$T/large.glb" --width 16 --height 16 --spp 1 -q -o "$T/large.png" 2>"$T/err" ||
   fail "render of the generated scene: $(cat "$T/err")"
+# Usage errors (exit 2, named on stderr): the room written to anything but a .glb, an assets folder that is not one.
+"$LUMIS" bench --write-large-scene "$T/room.gltf" >"$T/out" 2>"$T/err"
+[ $? = 2 ] || fail "--write-large-scene to a .gltf should exit 2"
+grep -q "expected a .glb file name" "$T/err" || fail "--write-large-scene message: $(cat "$T/err")"
+[ ! -e "$T/room.gltf" ] || fail "--write-large-scene wrote a .gltf"
+"$LUMIS" bench --write-large-scene "$T/ROOM.GLB" --large-triangles 200 2>"$T/err" ||
+  fail ".GLB refused: $(cat "$T/err")"
+"$LUMIS" bench --quick --assets "$T/no-such-folder" >"$T/out" 2>"$T/err"
+[ $? = 2 ] || fail "--assets on a missing folder should exit 2"
+grep -q "no-such-folder" "$T/err" || fail "--assets message: $(cat "$T/err")"
 "$LUMIS" bench "$T/missing.json" --quick >"$T/out" 2>"$T/err"
 [ $? = 1 ] || fail "a missing scene should exit 1"
 grep -q "missing.json" "$T/err" || fail "missing-scene message: $(cat "$T/err")"
