@@ -1,11 +1,11 @@
 // `lumis bench [SCENE ...] [--json OUT] [--repeat N] [--quick] [--write-large-scene OUT.glb]`.
-#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "app/bench.h"
 #include "app/cli.h"
+#include "core/file_ext.h"
 
 namespace lumis {
 
@@ -56,9 +56,7 @@ void register_bench_command(CLI::App& app, int& exit_code) {
                   "Only write the generated large scene to this .glb (with --large-triangles) and exit")
       ->check(CLI::Validator(
           [](std::string& path) -> std::string {
-            std::string ext = std::filesystem::path(path).extension().string();
-            for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));  // .GLB too
-            return ext == ".glb" ? "" : "expected a .glb file name, found " + path;
+            return lower_extension(path) == ".glb" ? "" : "expected a .glb file name, found " + path;  // .GLB too
           },
           "FILE.glb"));
   add_render_overrides(*cmd, o.overrides);

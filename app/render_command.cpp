@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <cctype>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -15,6 +14,7 @@
 #include "app/cli.h"
 #include "app/scene_error.h"
 #include "app/scene_loader.h"
+#include "core/file_ext.h"
 #include "core/image_io.h"
 #include "integrators/render.h"
 
@@ -109,8 +109,7 @@ int run_render(const RenderArgs& args) {
   RenderSettings& s = scene->settings;
   std::string out = args.output;
   if (out.empty()) out = std::filesystem::path(scene_path).stem().string() + ".png";
-  std::string ext = std::filesystem::path(out).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));  // .PNG as .png
+  const std::string ext = lower_extension(out);  // .PNG as .png
   if (ext != ".exr" && ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".hdr") {
     std::cerr << "lumis: " << out << ": unsupported output format '" << ext << "' (use .exr, .png, .jpg/.jpeg or .hdr)\n";
     return 2;

@@ -13,6 +13,7 @@
 
 #include "app/json_scene.h"
 #include "app/scene_error.h"
+#include "core/file_ext.h"
 #include "core/image.h"
 #include "integrators/integrator.h"
 
@@ -208,8 +209,7 @@ std::unique_ptr<Scene> load_scene(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw SceneError(path, "", "is a folder, expected a scene file");
   if (!std::filesystem::is_regular_file(path, ec)) throw SceneError(path, "", "no such scene file");
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower_extension(path);
   if (ext == ".json") return load_json_scene(read_text(path), path);
   if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path);
   throw SceneError(path, "", "unknown scene file type \"" + ext + "\"; expected .json, .gltf or .glb");

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <system_error>
 
+#include "core/file_ext.h"
+
 namespace lumis {
 
 namespace OIIO = OIIO_NAMESPACE;
@@ -16,12 +18,6 @@ namespace fs = std::filesystem;
 namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& reason) { throw ImageError(path + ": " + reason); }
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
 
 bool is_alpha_name(const std::string& name) { return name == "A" || name == "a" || name == "alpha" || name == "Alpha"; }
 
