@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The hit-record prefetches exist in the built binary (docs/performance.md, thirteenth round). GCC counts
+# The hit-record prefetches exist in the built binary (docs/performance-history.md, thirteenth round). GCC counts
 # __builtin_prefetch as free of side effects: its IPA pure-const pass found a void helper that only prefetched
 # "const" and deleted every call to it, so for twelve rounds the binary had no prefetch while the code had several.
 # Passes when a prefetcht0 sits in a function that is not a prefetch helper (prefetch_line, prefetch_hit_*: they
