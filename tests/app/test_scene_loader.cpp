@@ -191,6 +191,14 @@ TEST(SceneLoader, EmissionMakesShapesLightsThatStayGeometry) {
   EXPECT_EQ(scene->geometry.mesh(2).light, 2);
 }
 
+TEST(SceneLoader, FileTypeIsTheExtensionInAnyCase) {
+  const std::string json = write_file("UPPER.JSON", example_with_box());
+  EXPECT_EQ(load_scene(json)->settings.spp, 64);
+  const std::string glb = (test_dir() / "BOX.GLB").string();
+  std::filesystem::copy_file(kBoxGlb, glb, std::filesystem::copy_options::overwrite_existing);
+  EXPECT_EQ(load_scene(glb)->lights.size(), 1u);  // read as glTF: the white sky a lone glTF file gets
+}
+
 TEST(SceneLoader, GltfFileAloneGetsFramingCameraAndWhiteSky) {
   const auto scene = load_scene(kBoxGlb);
   ASSERT_GE(scene->environment, 0);
