@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Smoke test of `lumis bench`: tiny settings (--quick: a 20k-triangle generated room and cornell-sphere at 32x32,
 # 1 spp), the JSON report parses and has every field, the rays split by kind add up, the ratios to the raw rates
-# follow from the report's own rates and counts, the replay of each render's own rays holds all of them,
-# --write-large-scene writes a glTF that `lumis render` loads, and its usage errors (a name other than .glb, an
-# --assets folder that does not exist) exit 2. Speeds are not checked (shared machines). Usage: bench.sh path/to/lumis
+# and the time the target leaves lumis follow from the report's own rates, counts and times, the replay of each
+# render's own rays holds all of them, --write-large-scene writes a glTF that `lumis render` loads, and its usage
+# errors (a name other than .glb, an --assets folder that does not exist) exit 2. Speeds are not checked (shared machines). Usage: bench.sh path/to/lumis
 set -uo pipefail
 LUMIS=${1:?usage: bench.sh path/to/lumis}
 source "$(dirname "$0")/common.bash"
@@ -14,6 +14,7 @@ command -v python3 >/dev/null || { echo "skip: python3 needed to check the JSON"
 grep -q "Raw Embree" "$T/out" || fail "no raw-throughput table: $(cat "$T/out")"
 grep -q "Targets" "$T/out" || fail "no targets section: $(cat "$T/out")"
 grep -q "Embree by kind of ray" "$T/out" || fail "no per-kind table: $(cat "$T/out")"
+grep -q "What the rays/s target leaves lumis's own code" "$T/out" || fail "no budget section: $(cat "$T/out")"
 
 python3 - "$T/bench.json" <<'PY' || fail "JSON report: $(cat "$T/bench.json")"
 import json, sys
@@ -58,6 +59,14 @@ for s in doc["scenes"]:
             expected = embree_s * v["rays_per_s"] / v["rays"]
             assert abs(v[key] - expected) <= 1e-9 * expected, (s["name"], v["integrator"], key, v[key], expected)
         assert v["replay_rays"] == v["rays"], (s["name"], v["integrator"], "the replay must hold every ray")
+        # The budget: CPU time per sample split by the replay's Embree share; at the target ratio the same Embree
+        # time in ratio / target of the render's time.
+        b, per = v["budget_cpu_s_per_sample"], v["cpu_seconds"] / v["samples"]
+        assert b["target_ratio"] == 0.7 and per > 0, (s["name"], v["integrator"], b)
+        for key, expected in (("render", per), ("embree", v["embree_share"] * per),
+                              ("lumis", (1 - v["embree_share"]) * per),
+                              ("lumis_at_target", per * v["ratio_to_raw"] / 0.7 - v["embree_share"] * per)):
+            assert abs(b[key] - expected) <= 1e-9 * per, (s["name"], v["integrator"], key, b[key], expected)
     nee = next(v for v in s["variants"] if v["integrator"] == "nee_mis")
     mis = next(v for v in s["variants"] if v["integrator"] == "mis")
     assert nee["rays_by_kind"]["shadow"] > 0 and nee["rays_by_kind"]["light_query"] == 0
