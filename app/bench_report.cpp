@@ -77,14 +77,14 @@ double pct(uint64_t part, uint64_t whole) { return whole ? 100.0 * double(part) 
 /// What the rays/s target leaves lumis's own code, in CPU seconds per sample: the render's (all threads), Embree's
 /// part of it (the replay's share, embree_share), lumis's part, and lumis's part at ratio kTargetRatio (the same
 /// Embree time in kTargetRatio / ratio of the render's time; negative: out of reach even with lumis at zero).
-/// All 0 when the render or its replay is missing.
+/// All 0 when the render, its CPU time or its replay is missing.
 struct Budget {
   double per_sample = 0, embree = 0, lumis = 0, lumis_at_target = 0;
 };
 Budget budget(const BenchVariantResult& v) {
   Budget b;
-  if (v.samples == 0 || !(v.ratio > 0) || !(v.embree_share > 0)) return b;
-  b.per_sample = (v.cpu_seconds > 0 ? v.cpu_seconds : v.seconds) / double(v.samples);
+  if (v.samples == 0 || !(v.cpu_seconds > 0) || !(v.ratio > 0) || !(v.embree_share > 0)) return b;
+  b.per_sample = v.cpu_seconds / double(v.samples);
   b.embree = v.embree_share * b.per_sample;
   b.lumis = b.per_sample - b.embree;
   b.lumis_at_target = b.per_sample * v.ratio / kTargetRatio - b.embree;
@@ -196,7 +196,8 @@ void print_bench_report(const BenchReport& r) {
     std::printf("  %-4s %-60s %-16s %8.3f (%s %g)\n", t.met() ? "met" : "MISS", t.name.c_str(), t.scene.c_str(),
                 t.value, t.at_least ? ">=" : "<", t.bound);
 
-  std::printf("\nWhat the rays/s target leaves lumis's own code (nee_mis, CPU us per sample; Embree's part: emb%%):\n");
+  std::printf("\nWhat the rays/s target leaves lumis's own code (nee_mis, CPU us per sample; Embree's part: "
+              "emb%%):\n");
   for (const SceneResult& s : r.scenes) {
     const BenchVariantResult* v = s.error.empty() ? find_variant(s, "nee_mis") : nullptr;
     const Budget b = v ? budget(*v) : Budget{};
