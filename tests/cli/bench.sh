@@ -3,7 +3,8 @@
 # 1 spp), the JSON report parses and has every field, the rays split by kind add up, the ratios to the raw rates
 # and the time the target leaves lumis follow from the report's own rates, counts and times, the replay of each
 # render's own rays holds all of them, --write-large-scene writes a glTF that `lumis render` loads, and its usage
-# errors (a name other than .glb, an --assets folder that does not exist) exit 2. Speeds are not checked (shared machines). Usage: bench.sh path/to/lumis
+# errors (a name other than .glb, an --assets folder that does not exist) exit 2. Speeds are not checked (shared
+# machines). Usage: bench.sh path/to/lumis
 set -uo pipefail
 LUMIS=${1:?usage: bench.sh path/to/lumis}
 source "$(dirname "$0")/common.bash"
