@@ -1,5 +1,4 @@
 // `lumis bench [SCENE ...] [--json OUT] [--repeat N] [--quick] [--write-large-scene OUT.glb]`.
-#include <filesystem>
 #include <iostream>
 #include <memory>
 
