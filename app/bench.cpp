@@ -19,6 +19,7 @@
 
 #include "app/scene_error.h"
 #include "app/scene_loader.h"
+#include "core/file_ext.h"
 #include "integrators/integrator.h"
 #include "integrators/render.h"
 
@@ -360,6 +361,21 @@ int run_bench(const BenchOptions& o) {
   for (const std::string& p : o.scenes) {
     if (p == kLargeSceneToken) scenes.push_back({"large", p, true});
     else scenes.push_back({fs::path(p).stem().string(), p});
+  }
+  // A scene file that is not there fails the run before any scene is measured (a benchmark takes minutes).
+  for (const BenchScene& sc : scenes) {
+    std::error_code ec;
+    if (!sc.generated && !fs::is_regular_file(sc.path, ec)) {
+      std::cerr << "lumis: bench: " << sc.path
+                << (fs::is_directory(sc.path, ec) ? ": is a folder, expected a scene file\n" : ": file not found\n");
+      return 1;
+    }
+  }
+  if (!o.json_out.empty()) {
+    if (const std::string problem = output_file_problem(o.json_out); !problem.empty()) {
+      std::cerr << "lumis: bench: " << o.json_out << ": " << problem << "\n";
+      return 2;
+    }
   }
 
   int status = 0;

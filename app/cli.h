@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -34,10 +35,29 @@ inline const CLI::Validator kFiniteNumber(
     },
     "FINITE");
 
+/// CLI11 check that a number lies in [lo, hi], with a message that says so in the option's own terms (CLI::Range
+/// prints its bounds with six decimals, or as the largest double when there is no upper bound).
+inline CLI::Validator number_in(double lo, double hi, const std::string& expected) {
+  return CLI::Validator(
+      [lo, hi, expected](std::string& text) -> std::string {
+        try {
+          size_t used = 0;
+          const double v = std::stod(text, &used);
+          if (used == text.size() && !(v >= lo && v <= hi)) return "expected " + expected + ", found " + text;
+        } catch (const std::exception&) {  // not a number: the option's own conversion reports it
+        }
+        return {};
+      },
+      expected);
+}
+
 /// Register the override options on a CLI11 subcommand.
 void add_render_overrides(CLI::App& cmd, RenderOverrides& o);
 /// Apply overrides to settings; throws std::invalid_argument for bad names (listing valid ones).
 void apply_overrides(const RenderOverrides& o, RenderSettings& s);
+/// Warnings for overrides given on the command line that the chosen integrator does not use (for example
+/// --mis-light-probability with nee_mis), one sentence each.
+std::vector<std::string> unused_overrides(const RenderOverrides& o, const RenderSettings& s);
 
 /// The built-in default scene (scenes/cornell-sphere.json), found next to the sources or the executable.
 std::string default_scene_path();

@@ -28,6 +28,10 @@ std::vector<int> variance_channels(const Image& img) {
 }  // namespace
 
 std::vector<int> rgb_channels(const Image& img, const std::string& name) {
+  // A grey image (OpenImageIO names its one channel Y, as in a greyscale PNG) compares as R = G = B = Y.
+  if (const int y = img.channel_index("Y");
+      y >= 0 && img.channel_index("R") < 0 && img.channel_index("G") < 0 && img.channel_index("B") < 0)
+    return {y, y, y};
   std::vector<int> idx;
   std::string missing;
   for (const char* n : {"R", "G", "B"}) {
@@ -38,7 +42,8 @@ std::vector<int> rgb_channels(const Image& img, const std::string& name) {
   if (!missing.empty()) {
     std::string have;
     for (const std::string& c : img.channel_names) have += (have.empty() ? "" : ", ") + c;
-    throw DiffError(name + ": no " + missing + " channel (has " + have + "); only R, G, B are compared");
+    throw DiffError(name + ": no " + missing + " channel (has " + have +
+                    "); R, G, B (or a grey Y channel) are compared");
   }
   return idx;
 }

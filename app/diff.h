@@ -37,7 +37,8 @@ struct DiffMetrics {
   uint64_t nonfinite = 0;  ///< pixel-channels where a or b is NaN or infinite (metrics then become NaN)
 };
 
-/// Indices of the R, G and B channels; throws DiffError naming `name` when one is missing.
+/// Indices of the R, G and B channels (a grey image's Y channel three times); throws DiffError naming `name` when
+/// one is missing.
 std::vector<int> rgb_channels(const Image& img, const std::string& name);
 /// Throws DiffError naming both images when their sizes differ or either lacks R, G or B.
 void check_comparable(const Image& a, const Image& b, const DiffOptions& options);

@@ -4,11 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "app/cli.h"
 #include "app/diff.h"
+#include "core/file_ext.h"
 #include "core/image_io.h"
 
 namespace lumis {
@@ -62,6 +64,12 @@ int run_diff(const DiffArgs& args) {
       if (used != args.psnr_peak.size() || !(opt.psnr_peak > 0) || !std::isfinite(opt.psnr_peak)) throw std::invalid_argument("");
     } catch (const std::exception&) {
       std::cerr << "lumis diff: --psnr-peak: expected a positive number or 'max', got '" << args.psnr_peak << "'\n";
+      return 2;
+    }
+  }
+  if (!args.heatmap.empty()) {
+    if (const std::string problem = output_file_problem(args.heatmap); !problem.empty()) {
+      std::cerr << "lumis diff: " << args.heatmap << ": " << problem << "\n";
       return 2;
     }
   }
@@ -147,7 +155,7 @@ void register_diff_command(CLI::App& app, int& exit_code) {
       ->check(kFiniteNumber);
   cmd->add_option("--tolerance", args->tolerance, "Absolute error per channel for the 'over' metric")
       ->check(kFiniteNumber)
-      ->check(CLI::NonNegativeNumber)
+      ->check(number_in(0, std::numeric_limits<double>::max(), "a number >= 0"))
       ->capture_default_str();
   cmd->add_option("--psnr-peak", args->psnr_peak, "PSNR peak: a number, or 'max' for the reference's largest value")
       ->capture_default_str();
@@ -157,7 +165,7 @@ void register_diff_command(CLI::App& app, int& exit_code) {
                 "Per-pixel z-test against B's variance channels (plus A's when present); fail on any rejection");
   cmd->add_option("--alpha", args->alpha, "Family-wise significance level of the z-test")
       ->check(kFiniteNumber)
-      ->check(CLI::Range(1e-12, 0.5))
+      ->check(number_in(1e-12, 0.5, "a significance level in [1e-12, 0.5]"))
       ->capture_default_str();
   cmd->callback([args, &exit_code] { exit_code = run_diff(*args); });
 }

@@ -10,6 +10,9 @@ int main(int argc, char** argv) {
   CLI::App app{"lumis: an offline path tracer built on the importance-sampling lecture's estimators"};
   app.set_version_flag("--version", std::string("lumis ") + LUMIS_VERSION);
   app.require_subcommand(1);
+  // Usage errors start with "lumis: ", as every other message does.
+  app.failure_message(
+      [](const CLI::App* a, const CLI::Error& e) { return "lumis: " + CLI::FailureMessage::simple(a, e); });
   int exit_code = 0;
   lumis::register_render_command(app, exit_code);
   lumis::register_warptest_command(app, exit_code);

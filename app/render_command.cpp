@@ -22,8 +22,14 @@ namespace lumis {
 
 namespace {
 
+// Ctrl-C (SIGINT) and SIGTERM (what batch schedulers and `kill` send) stop the render at a sample boundary; the
+// image rendered so far is written and the exit code is 128 + the signal, as a shell reports a killed command.
 std::atomic<bool> g_interrupted{false};
-void on_sigint(int) { g_interrupted.store(true); }
+std::atomic<int> g_signal{0};
+void on_stop_signal(int sig) {
+  g_signal.store(sig);
+  g_interrupted.store(true);
+}
 
 std::string format_count(double v) {
   char buf[32];
@@ -91,6 +97,23 @@ struct RenderArgs {
 
 int run_render(const RenderArgs& args) {
   const std::string scene_path = args.scene.empty() ? default_scene_path() : args.scene;
+  // The output is checked before anything is loaded or rendered, so that no work is lost to a typo in -o.
+  std::string out = args.output;
+  if (out.empty()) out = std::filesystem::path(scene_path).stem().string() + ".png";
+  const std::string ext = lower_extension(out);  // .PNG as .png
+  if (const std::string problem = output_file_problem(out); !problem.empty()) {
+    std::cerr << "lumis: " << out << ": " << problem << "\n";
+    return 2;
+  }
+  if (ext != ".exr" && ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".hdr") {
+    std::cerr << "lumis: " << out << ": unsupported output format '" << ext << "' (use .exr, .png, .jpg/.jpeg or .hdr)\n";
+    return 2;
+  }
+  if (ext != ".exr" && (args.aov_albedo || args.aov_normal || args.aov_depth)) {
+    std::cerr << "lumis: " << out << ": --aov-albedo, --aov-normal and --aov-depth add EXR channels; write an .exr "
+              << "to keep them\n";
+    return 2;
+  }
   std::unique_ptr<Scene> scene;
   try {
     scene = load_scene(scene_path);
@@ -107,13 +130,7 @@ int run_render(const RenderArgs& args) {
     return 1;
   }
   RenderSettings& s = scene->settings;
-  std::string out = args.output;
-  if (out.empty()) out = std::filesystem::path(scene_path).stem().string() + ".png";
-  const std::string ext = lower_extension(out);  // .PNG as .png
-  if (ext != ".exr" && ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".hdr") {
-    std::cerr << "lumis: " << out << ": unsupported output format '" << ext << "' (use .exr, .png, .jpg/.jpeg or .hdr)\n";
-    return 2;
-  }
+  for (const std::string& w : unused_overrides(args.overrides, s)) std::cerr << "lumis: warning: " << w << "\n";
   std::unique_ptr<Integrator> integrator;
   try {
     integrator = make_integrator(s);
@@ -153,7 +170,8 @@ int run_render(const RenderArgs& args) {
                    format_count(p.samples_done / std::max(p.elapsed, 1e-9)).c_str());
     };
   }
-  std::signal(SIGINT, on_sigint);
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
   const RenderStats st = render(*scene, *integrator, film, ro);
   if (tty) std::fprintf(stderr, "\n");
 
@@ -171,11 +189,13 @@ int run_render(const RenderArgs& args) {
     write_image(out, film.to_image(), wo);
   } catch (const std::exception& e) {
     std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
     std::cerr << "lumis: " << e.what() << "\n";
     return 1;
   }
-  // Only now: a second Ctrl-C during the write would otherwise leave a temporary file behind.
+  // Only now: a second signal during the write would otherwise leave a temporary file behind.
   std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   if (!args.quiet) {
     std::fprintf(stderr, "%s: %dx%d, %s, %u spp in %.2f s, %s samples/s, %s rays/s%s -> %s\n", scene_path.c_str(),
                  s.width, s.height, integrator->name(), st.spp, st.seconds,
@@ -186,7 +206,7 @@ int run_render(const RenderArgs& args) {
   // A warning even with -q: dropped samples bias the image.
   if (st.dropped) std::fprintf(stderr, "lumis: warning: %llu non-finite samples dropped\n",
                                static_cast<unsigned long long>(st.dropped));
-  return g_interrupted ? 130 : 0;
+  return g_interrupted ? 128 + g_signal.load() : 0;
 }
 
 }  // namespace

@@ -11,7 +11,8 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
   cmd.add_option("--max-depth", o.max_depth, "Scattering vertices per path (1 = direct lighting only)")
       ->check(CLI::Range(1, 1024));
   cmd.add_option("--rr-depth", o.rr_depth, "Russian roulette from this depth on (0 = off)")->check(CLI::Range(0, 1024));
-  cmd.add_option("--seed", o.seed, "Random seed");
+  cmd.add_option("--seed", o.seed, "Random seed, in [0, 4294967295]")
+      ->check(number_in(0, 4294967295.0, "a whole number in [0, 4294967295]"));
   cmd.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   cmd.add_option("--width", o.width, "Image width in pixels")->check(CLI::Range(1, 16384));
   cmd.add_option("--height", o.height, "Image height in pixels")->check(CLI::Range(1, 16384));
@@ -84,6 +85,20 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
     else throw std::invalid_argument("--uniform-measure: unknown measure '" + *o.uniform_measure +
                                      "' (valid: theta-phi, solid-angle)");
   }
+}
+
+std::vector<std::string> unused_overrides(const RenderOverrides& o, const RenderSettings& s) {
+  std::vector<std::string> out;
+  const std::string& i = s.integrator;
+  const auto unused = [&](bool given, const char* option, const char* applies_to) {
+    if (given) out.push_back(std::string(option) + " only affects " + applies_to + "; ignored for " + i);
+  };
+  unused(o.mis_light_probability.has_value() && i != "mis", "--mis-light-probability", "--integrator mis");
+  unused(o.uniform_measure.has_value() && i != "uniform", "--uniform-measure", "--integrator uniform");
+  unused(o.mis_heuristic.has_value() && i != "mis" && i != "nee_mis", "--mis-heuristic", "mis and nee_mis");
+  unused(o.light_selection.has_value() && (i == "uniform" || i == "bsdf"), "--light-selection",
+         "light, mis and nee_mis");
+  return out;
 }
 
 }  // namespace lumis

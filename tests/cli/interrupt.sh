@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Interruption and time budgets keep the work done so far: Ctrl-C (SIGINT) during a long render writes the image
-# rendered so far (exit 130) with its true sample count in the EXR metadata and leaves no temporary file; --time
-# stops at the budget (exit 0) the same way; a render too large for the memory available fails before allocating.
+# rendered so far (exit 130) with its true sample count in the EXR metadata and leaves no temporary file; SIGTERM
+# does the same (exit 143); --time stops at the budget (exit 0) the same way; a render too large for the memory
+# available fails before allocating.
 # Usage: interrupt.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: interrupt.sh path/to/lumis}
@@ -38,6 +39,28 @@ spp=$(attr "$T/int/out.exr" lumis:spp)
 [ "$(attr "$T/int/out.exr" lumis:seed)" = 0 ] || fail "lumis:seed"
 [ "$(attr "$T/int/out.exr" lumis:scene)" = "$SCENE" ] || fail "lumis:scene"
 grep -q "(interrupted)" "$T/err" || fail "summary does not say interrupted"
+
+# --- SIGTERM (what batch schedulers and `kill` send) stops the render the same way: the image so far is written
+# and the exit code is 143 (128 + 15), as a shell reports a terminated command. A SIGTERM while the scene loads ends
+# lumis at once (nothing is rendered yet), so lumis is started with SIGTERM ignored, as the job above starts with
+# SIGINT ignored: the signals sent before lumis installs its handler are lost, the first one after it stops it.
+mkdir "$T/term"
+(trap '' TERM && exec "$LUMIS" render "$SCENE" --width 64 --height 64 --spp 1000000 --threads 2 -o "$T/term/out.exr") \
+  2>"$T/err" &
+pid=$!
+sleep 1
+for _ in $(seq 1 60); do
+  kill -TERM "$pid" 2>/dev/null || break
+  sleep 0.5
+done
+kill -KILL "$pid" 2>/dev/null  # still running after 30 s of SIGTERMs: a failure, not a wait of hours
+wait "$pid"
+code=$?
+[ "$code" = 143 ] || fail "terminated render exited $code, expected 143"
+[ "$(ls -A "$T/term")" = "out.exr" ] || fail "after SIGTERM the folder holds: $(ls -A "$T/term")"
+[ "$(attr "$T/term/out.exr" lumis:stopped)" = interrupted ] || fail "lumis:stopped is not 'interrupted' after SIGTERM"
+spp=$(attr "$T/term/out.exr" lumis:spp)
+[ "$spp" = "$(summary_spp)" ] || fail "lumis:spp $spp, summary says $(summary_spp)"
 
 # --- Time budget: stops near the budget with what it has, exit 0.
 mkdir "$T/time"

@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Where an output cannot be written, lumis says so before doing any work (render, diff's heatmap, bench's JSON and
+# scene list), naming the path given and not a temporary one; options that cannot take effect are refused (AOVs in
+# a PNG) or named in a warning (--mis-light-probability without the mis integrator); command-line errors start
+# with "lumis: " and give the accepted range; diff compares grey images.
+# Usage: outputs.sh path/to/lumis   (exit 77 = skipped)
+set -uo pipefail
+LUMIS=${1:?usage: outputs.sh path/to/lumis}
+source "$(dirname "$0")/common.bash"
+has() { grep -qF -- "$1" "$T/err" || { cat "$T/err"; fail "stderr lacks '$1'"; }; }
+
+# A render that would take hours if it started: each case must fail at once, without a temporary file.
+LONG=(render "$SCENE" --width 64 --height 64 --spp 100000000 -q)
+quick() {  # quick CODE CMD...: as expect, within 20 s (rendering first would take far longer)
+  local want=$1; shift
+  timeout 20 "$@" >"$T/out" 2>"$T/err"
+  local got=$?
+  [ "$got" != 124 ] || fail "still working after 20 s instead of failing at once: $*"
+  [ "$got" = "$want" ] || { cat "$T/out" "$T/err"; fail "exit $got, expected $want: $*"; }
+}
+quick 2 "$LUMIS" "${LONG[@]}" -o "$T/no-such-folder/out.png"
+has "lumis: $T/no-such-folder/out.png: the folder $T/no-such-folder does not exist"
+grep -q "tmp-" "$T/err" && fail "the message names a temporary file: $(cat "$T/err")"
+mkdir "$T/dir"
+quick 2 "$LUMIS" "${LONG[@]}" -o "$T/dir"
+has "$T/dir: is a folder; give an image file name"
+touch "$T/file"
+quick 2 "$LUMIS" "${LONG[@]}" -o "$T/file/out.png"
+has "$T/file is not a folder"
+[ -z "$(ls -A "$T/dir")" ] || fail "files left in $T/dir: $(ls -A "$T/dir")"
+
+# AOV channels exist only in EXR files: asked for with a PNG, a usage error before rendering.
+quick 2 "$LUMIS" "${LONG[@]}" --aov-normal -o "$T/aov.png"
+has "write an .exr"
+[ ! -e "$T/aov.png" ] || fail "aov.png written"
+
+# Options the chosen integrator does not use: rendered, with a warning that says so (also with -q).
+R=(render "$SCENE" --width 8 --height 8 --spp 1 -q)
+expect 0 "$LUMIS" "${R[@]}" --mis-light-probability 0.3 -o "$T/w.png"
+has "warning: --mis-light-probability only affects --integrator mis; ignored for nee_mis"
+expect 0 "$LUMIS" "${R[@]}" --integrator bsdf --uniform-measure solid-angle --light-selection power -o "$T/w.png"
+has "--uniform-measure only affects --integrator uniform; ignored for bsdf"
+has "--light-selection only affects light, mis and nee_mis; ignored for bsdf"
+expect 0 "$LUMIS" "${R[@]}" --integrator mis --mis-light-probability 0.3 -o "$T/w.png"
+[ ! -s "$T/err" ] || fail "a warning for options that apply: $(cat "$T/err")"
+
+# Command-line errors: prefixed like every other message, with the range that is accepted.
+expect 2 "$LUMIS" "${R[@]}" --seed 4294967296 -o "$T/s.png"
+has "lumis: --seed: expected a whole number in [0, 4294967295], found 4294967296"
+expect 2 "$LUMIS" "${R[@]}" --spp 0 -o "$T/s.png"
+has "lumis: --spp"
+expect 0 "$LUMIS" "${R[@]}" --seed 4294967295 -o "$T/s.png"
+
+# diff: the heatmap's folder is checked before the images are read; ranges are stated as accepted.
+expect 0 "$LUMIS" "${R[@]}" -o "$T/a.png"
+expect 2 "$LUMIS" diff "$T/a.png" "$T/a.png" --heatmap "$T/no-such-folder/heat.png"
+has "the folder $T/no-such-folder does not exist"
+expect 2 "$LUMIS" diff "$T/a.png" "$T/a.png" --alpha 0
+has "expected a significance level in [1e-12, 0.5], found 0"
+expect 2 "$LUMIS" diff "$T/a.png" "$T/a.png" --tolerance -1
+has "--tolerance: expected a number >= 0, found -1"
+# A grey image (one channel, Y) compares as R = G = B.
+if command -v oiiotool >/dev/null; then
+  oiiotool "$T/a.png" --ch "Y=R" -o "$T/grey.png" || fail "oiiotool could not write a grey PNG"
+  expect 0 "$LUMIS" diff "$T/grey.png" "$T/grey.png" --threshold 0
+  expect 1 "$LUMIS" diff "$T/grey.png" "$T/a.png" --metric maxabs --threshold 0
+fi
+
+# bench: a scene that is not there fails the run before anything is measured, without printing empty tables.
+quick 1 "$LUMIS" bench "$SCENE" "$T/no-such-scene.json"
+has "$T/no-such-scene.json: file not found"
+[ ! -s "$T/out" ] || fail "bench printed a report: $(cat "$T/out")"
+quick 2 "$LUMIS" bench "$SCENE" --json "$T/no-such-folder/b.json"
+has "the folder $T/no-such-folder does not exist"
+echo "output and option checks passed"
