@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "materials/shading.h"
+
 namespace lumis {
 
 float mis_weight(float pdf_a, float pdf_b, MisHeuristic heuristic) {
@@ -20,9 +22,12 @@ std::optional<Vertex> make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_d
   const Vec3 ng = facing_ng(hit);
   if (!hit.front) frame = Frame(frame.s, -frame.t, -frame.n);  // two-sided shading: the surface faces the ray
   const Vec3 wo_world = -normalize_unless_unit(ray_dir);  // bounce rays' directions are unit already
+  // Shading-normal rule 3 (materials/shading.h): a shading normal that hides wo, or mirrors it below the geometric
+  // surface, is bent toward ng just enough that neither happens (without it, glossy normal-mapped surfaces turn
+  // black at grazing angles). Flat geometry (shading normal = ng) never needs it.
+  if (!(frame.n == ng)) frame = adapt_shading_frame(frame, ng, wo_world);
   Vec3 wo = frame.to_local(wo_world);
-  // Shading-normal rule: when the shading normal puts the viewer below the surface although the geometry faces
-  // it, shade with the geometric normal (no black faces).
+  // What rule 3 cannot fix (wo grazing the geometric surface itself): shade with the geometric normal.
   if (!(wo.z > 1e-6f)) {
     frame = Frame::from_normal(ng);
     wo = frame.to_local(wo_world);
