@@ -79,9 +79,10 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
     else throw std::invalid_argument("--mis-heuristic: unknown heuristic '" + *o.mis_heuristic +
                                      "' (valid: balance, power)");
   }
-  if (o.uniform_measure) {
-    if (*o.uniform_measure == "theta-phi") s.uniform_measure = UniformMeasure::ThetaPhi;
-    else if (*o.uniform_measure == "solid-angle") s.uniform_measure = UniformMeasure::SolidAngle;
+  if (o.uniform_measure) {  // the scene file's spelling (theta_phi, solid_angle) is accepted too
+    const std::string& m = *o.uniform_measure;
+    if (m == "theta-phi" || m == "theta_phi") s.uniform_measure = UniformMeasure::ThetaPhi;
+    else if (m == "solid-angle" || m == "solid_angle") s.uniform_measure = UniformMeasure::SolidAngle;
     else throw std::invalid_argument("--uniform-measure: unknown measure '" + *o.uniform_measure +
                                      "' (valid: theta-phi, solid-angle)");
   }

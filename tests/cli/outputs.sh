@@ -2,7 +2,8 @@
 # Where an output cannot be written, lumis says so before doing any work (render, diff's heatmap, bench's JSON and
 # scene list), naming the path given and not a temporary one; options that cannot take effect are refused (AOVs in
 # a PNG) or named in a warning (--mis-light-probability without the mis integrator); command-line errors start
-# with "lumis: " and give the accepted range; diff compares grey images.
+# with "lumis: " and give the accepted range; --uniform-measure takes the scene file's spelling too; diff compares
+# grey images.
 # Usage: outputs.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: outputs.sh path/to/lumis}
@@ -43,6 +44,9 @@ has "--uniform-measure only affects --integrator uniform; ignored for bsdf"
 has "--light-selection only affects light, mis and nee_mis; ignored for bsdf"
 expect 0 "$LUMIS" "${R[@]}" --integrator mis --mis-light-probability 0.3 -o "$T/w.png"
 [ ! -s "$T/err" ] || fail "a warning for options that apply: $(cat "$T/err")"
+
+# The scene file's spelling of a measure works on the command line too.
+expect 0 "$LUMIS" "${R[@]}" --integrator uniform --uniform-measure solid_angle -o "$T/w.png"
 
 # Command-line errors: prefixed like every other message, with the range that is accepted.
 expect 2 "$LUMIS" "${R[@]}" --seed 4294967296 -o "$T/s.png"
