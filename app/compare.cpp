@@ -110,16 +110,49 @@ std::string timing(double seconds) {
   return buf;
 }
 
+// Why DIR cannot be the output folder, checked before any work: it, or the first part of it that exists, is not a
+// folder. Empty when it can be used (created when missing).
+std::string output_folder_problem(const fs::path& dir) {
+  std::error_code ec;
+  for (fs::path p = dir; !p.empty(); p = p.parent_path()) {
+    if (fs::exists(p, ec)) {
+      if (fs::is_directory(p, ec)) return "";
+      return p == dir ? "exists and is not a folder" : p.string() + " is not a folder";
+    }
+    if (p == p.parent_path()) break;
+  }
+  return "";
+}
+
+// A given reference: readable, the render's size, with R, G, B (a UsageError or DiffError otherwise).
+Image read_reference(const std::string& path, const RenderSettings& s, const std::string& scene_path) {
+  Image reference = read_image(path, true);
+  if (reference.width != s.width || reference.height != s.height)
+    throw UsageError("compare: reference " + path + " is " + std::to_string(reference.width) + "x" +
+                     std::to_string(reference.height) + " but " + scene_path + " renders at " +
+                     std::to_string(s.width) + "x" + std::to_string(s.height) + " (use --width/--height)");
+  rgb_channels(reference, path);
+  return reference;
+}
+
 int run_compare(const CompareArgs& args) {
   const std::string scene_path = args.scene.empty() ? default_scene_path() : args.scene;
+  const fs::path dir = args.output.empty() ? fs::path("compare-" + fs::path(scene_path).stem().string())
+                                           : fs::path(args.output);
   std::unique_ptr<Scene> scene;
   std::vector<std::string> names;
   std::optional<CropRect> crop;
   try {
     if (args.overrides.integrator) throw UsageError("compare: use --integrators (a list), not --integrator");
+    if (args.overrides.spp && args.overrides.time && *args.overrides.time > 0)
+      throw UsageError("compare: --spp and --time both given; the variants are compared at equal samples (--spp) "
+                       "or at equal time (--time), not both");
+    if (const std::string problem = output_folder_problem(dir); !problem.empty())
+      throw UsageError("compare: -o " + dir.string() + ": " + problem + " (give a folder for the outputs)");
     names = parse_integrator_list(args.integrators);
     scene = load_scene(scene_path);
     apply_overrides(args.overrides, scene->settings);
+    if (args.overrides.spp) scene->settings.time_budget = 0;  // --spp asks for equal samples, over the scene's time
     scene->update_light_selector();
     if (!args.crop.empty()) crop = parse_crop(args.crop, scene->settings.width, scene->settings.height);
   } catch (const SceneError& e) {
@@ -137,8 +170,6 @@ int run_compare(const CompareArgs& args) {
   }
   const RenderSettings base = scene->settings;
   const bool equal_time = base.time_budget > 0;
-  const fs::path dir = args.output.empty() ? fs::path("compare-" + fs::path(scene_path).stem().string())
-                                           : fs::path(args.output);
   auto log = [&](const std::string& line) {
     if (!args.quiet) std::cerr << "compare: " << line << "\n";
   };
@@ -150,22 +181,24 @@ int run_compare(const CompareArgs& args) {
   report.equal_time = equal_time;
   report.spp = base.spp;
   report.time_budget = base.time_budget;
+  report.settings = base;
   report.crop = crop;
+  bool created = false;  // whether this run created DIR: it is removed again if a failure leaves it empty
+  int rc = 0;
   try {
-    fs::create_directories(dir);
-
-    // Reference: a given file, or nee_mis at many samples, cached by a hash of everything it depends on.
+    // Reference: a given file (checked before DIR is created), or nee_mis at many samples, cached by a hash of
+    // everything it depends on.
     Image reference;
+    if (!args.reference.empty()) reference = read_reference(args.reference, base, scene_path);
+    created = !fs::exists(dir);
+    fs::create_directories(dir);
     if (!args.reference.empty()) {
-      reference = read_image(args.reference, true);
-      if (reference.width != base.width || reference.height != base.height)
-        throw UsageError("compare: reference " + args.reference + " is " + std::to_string(reference.width) + "x" +
-                         std::to_string(reference.height) + " but " + scene_path + " renders at " +
-                         std::to_string(base.width) + "x" + std::to_string(base.height) +
-                         " (use --width/--height)");
       report.reference_source = args.reference;
     } else {
-      const uint32_t ref_spp = args.reference_spp ? *args.reference_spp : std::max(256u, 16 * base.spp);
+      // 16x the variants' samples (at least 256), within --spp's own limit of 2^30.
+      const uint32_t ref_spp = args.reference_spp ? *args.reference_spp
+                                                  : static_cast<uint32_t>(std::clamp<uint64_t>(
+                                                        16 * uint64_t(base.spp), 256, uint64_t(1) << 30));
       const std::string hash = reference_hash(read_file_bytes(scene_path), base, ref_spp);
       const fs::path exr = dir / "reference.exr", meta = dir / "reference.json";
       bool cached = false;
@@ -174,6 +207,7 @@ int run_compare(const CompareArgs& args) {
           const nlohmann::json j = nlohmann::json::parse(read_file_bytes(meta.string()));
           if (j.value("hash", "") == hash) {
             reference = read_image(exr.string());
+            rgb_channels(reference, exr.string());
             cached = reference.width == base.width && reference.height == base.height;
           }
         } catch (const std::exception&) {
@@ -198,7 +232,6 @@ int run_compare(const CompareArgs& args) {
       report.reference_spp = ref_spp;
       report.reference_hash = hash;
     }
-    rgb_channels(reference, args.reference.empty() ? "reference.exr" : args.reference);
     WriteOptions display;
     display.exposure = base.exposure;
     write_image((dir / report.reference_png).string(), reference, display);
@@ -283,13 +316,21 @@ int run_compare(const CompareArgs& args) {
     write_text(dir / "index.html", report_html(report));
   } catch (const UsageError& e) {
     std::cerr << "lumis " << e.what() << "\n";
-    return 2;
+    rc = 2;
   } catch (const DiffError& e) {
     std::cerr << "lumis compare: " << e.what() << "\n";
-    return 2;
+    rc = 2;
+  } catch (const fs::filesystem_error& e) {
+    std::cerr << "lumis compare: " << e.path1().string() << ": " << e.code().message() << "\n";
+    rc = 1;
   } catch (const std::exception& e) {
     std::cerr << "lumis compare: " << e.what() << "\n";
-    return 1;
+    rc = 1;
+  }
+  if (rc != 0) {
+    std::error_code ec;
+    if (created && fs::is_empty(dir, ec)) fs::remove(dir, ec);
+    return rc;
   }
   log("wrote " + (dir / "index.html").string() + ", report.md, report.json, montage.png");
   if (!args.quiet) std::cout << report_markdown(report);
@@ -315,6 +356,14 @@ void register_compare_command(CLI::App& app, int& exit_code) {
                 "Also render each variant at 1, 2, 4, ... spp and plot error against time (convergence.png)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress on stderr and no table on stdout");
   add_render_overrides(*cmd, args->overrides);
+  // The shared render options, worded for compare. --integrator stays registered only to refuse it helpfully.
+  cmd->get_option("--integrator")->group("");
+  cmd->get_option("--spp")->description("Equal samples: samples per pixel of every variant (default: the scene's)");
+  cmd->get_option("--time")->description(
+      "Equal time: every variant renders for this many seconds, in whole passes (instead of --spp; 0 = none)");
+  cmd->get_option("--mis-light-probability")
+      ->description("For the mis variant: probability c_l of the light strategy, in [0, 1) (default 0.5)");
+  cmd->get_option("--uniform-measure")->description("theta-phi | solid-angle (for the uniform variant)");
   cmd->callback([args, &exit_code] { exit_code = run_compare(*args); });
 }
 

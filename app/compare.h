@@ -59,6 +59,7 @@ struct CompareReport {
   bool equal_time = false;
   uint32_t spp = 0;       ///< equal-spp mode: samples per pixel of every variant
   double time_budget = 0; ///< equal-time mode: seconds per variant
+  RenderSettings settings;  ///< the variants' settings (their integrator aside), for report.json's "settings"
   std::string reference_source;  ///< "rendered", "cached" or the --reference path
   std::string reference_png = "reference.png";
   uint32_t reference_spp = 0;    ///< 0 when given as a file
@@ -70,6 +71,9 @@ struct CompareReport {
 };
 
 nlohmann::json report_json(const CompareReport& r);
+/// One line of the settings that determine the images, besides size and spp or time (for report.md and index.html):
+/// "max depth 8, rr depth 3, stratified sampler, seed 0, ...".
+std::string settings_summary(const CompareReport& r);
 /// Markdown table: variant, spp, time, samples/s, rays/s, MSE, relMSE, efficiency.
 std::string report_markdown(const CompareReport& r);
 /// Self-contained viewer (images by relative file name, no external resources).

@@ -6,6 +6,7 @@
 
 #include "app/compare.h"
 #include "integrators/integrator.h"
+#include "lights/light_selection.h"
 
 namespace lumis {
 
@@ -32,7 +33,54 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
+const char* heuristic_name(MisHeuristic h) { return h == MisHeuristic::Power ? "power" : "balance"; }
+const char* measure_name(UniformMeasure m) { return m == UniformMeasure::SolidAngle ? "solid-angle" : "theta-phi"; }
+
+bool has_variant(const CompareReport& r, const std::string& name) {
+  for (const VariantResult& v : r.variants)
+    if (v.name == name) return true;
+  return false;
+}
+
+// Everything that determines the images: the comparison's settings, options that only one variant reads when that
+// variant is compared, and where the reference comes from.
+nlohmann::json settings_json(const CompareReport& r) {
+  const RenderSettings& s = r.settings;
+  nlohmann::json j = {{"width", r.width}, {"height", r.height}, {"mode", r.equal_time ? "equal-time" : "equal-spp"}};
+  if (r.equal_time) j["time_budget"] = r.time_budget;
+  else j["spp"] = r.spp;
+  j["integrators"] = nlohmann::json::array();
+  for (const VariantResult& v : r.variants) j["integrators"].push_back(v.name);
+  j["max_depth"] = s.max_depth;
+  j["rr_depth"] = s.rr_depth;
+  j["sampler"] = sampler_type_name(s.sampler);
+  j["seed"] = s.seed;
+  j["light_selection"] = light_selection_name(s.light_selection);
+  j["mis_heuristic"] = heuristic_name(s.mis_heuristic);
+  if (has_variant(r, "mis")) j["mis_light_probability"] = s.mis_light_probability;
+  if (has_variant(r, "uniform")) j["uniform_measure"] = measure_name(s.uniform_measure);
+  j["threads"] = s.threads;
+  j["exposure"] = s.exposure;
+  if (r.reference_spp) j["reference_spp"] = r.reference_spp;
+  else j["reference_file"] = r.reference_source;
+  return j;
+}
+
 }  // namespace
+
+std::string settings_summary(const CompareReport& r) {
+  const RenderSettings& s = r.settings;
+  std::ostringstream out;
+  out << "max depth " << s.max_depth << ", ";
+  if (s.rr_depth > 0) out << "Russian roulette from depth " << s.rr_depth;
+  else out << "no Russian roulette";
+  out << ", " << sampler_type_name(s.sampler) << " sampler, seed " << s.seed << ", "
+      << light_selection_name(s.light_selection) << " light selection, " << heuristic_name(s.mis_heuristic)
+      << " MIS heuristic";
+  if (has_variant(r, "mis")) out << ", mis light probability " << fmt("%g", s.mis_light_probability);
+  if (has_variant(r, "uniform")) out << ", uniform measure " << measure_name(s.uniform_measure);
+  return out.str();
+}
 
 CropRect parse_crop(const std::string& text, int width, int height) {
   const std::vector<std::string> parts = split(text, ',');
@@ -96,7 +144,7 @@ nlohmann::json reference_key(const RenderSettings& s, uint32_t reference_spp) {
           {"sampler", sampler_type_name(s.sampler)},
           {"seed", reference_seed(s.seed)},
           {"light_selection", light_selection_name(s.light_selection)},
-          {"mis_heuristic", s.mis_heuristic == MisHeuristic::Power ? "power" : "balance"}};
+          {"mis_heuristic", heuristic_name(s.mis_heuristic)}};
 }
 
 std::string reference_hash(const std::string& scene_bytes, const RenderSettings& s, uint32_t reference_spp) {
@@ -111,6 +159,7 @@ nlohmann::json report_json(const CompareReport& r) {
   j["mode"] = r.equal_time ? "equal-time" : "equal-spp";
   if (r.equal_time) j["time_budget"] = r.time_budget;
   else j["spp"] = r.spp;
+  j["settings"] = settings_json(r);
   j["reference"] = {{"source", r.reference_source}, {"png", r.reference_png}, {"spp", r.reference_spp},
                     {"hash", r.reference_hash}};
   j["error_scale"] = r.error_scale;
@@ -151,7 +200,7 @@ std::string report_markdown(const CompareReport& r) {
   else md << "equal samples (" << r.spp << " spp)";
   md << "; reference: " << r.reference_source;
   if (r.reference_spp) md << " (nee_mis, " << r.reference_spp << " spp)";
-  md << ".\n\n";
+  md << ".\n\nSettings: " << settings_summary(r) << ".\n\n";
   md << "| variant | spp | time (s) | samples/s | rays/s | MSE | relMSE | efficiency |\n";
   md << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const VariantResult& v : r.variants)

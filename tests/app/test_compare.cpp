@@ -112,6 +112,58 @@ TEST(CompareReport, JsonMarkdownAndSelfContainedHtml) {
   }
 }
 
+// report.json's "settings" holds everything the images depend on (the options only one variant reads when that variant
+// is compared); the top-level keys scripts read stay; report.md and index.html show the same settings in a line.
+TEST(CompareReport, SettingsHoldWhatDeterminesTheImages) {
+  CompareReport r = sample_report();
+  r.settings.max_depth = 2;
+  r.settings.rr_depth = 0;
+  r.settings.sampler = SamplerType::Sobol;
+  r.settings.seed = 7;
+  r.settings.light_selection = LightSelection::Power;
+  r.settings.mis_heuristic = MisHeuristic::Power;
+  r.settings.uniform_measure = UniformMeasure::SolidAngle;
+  const nlohmann::json j = report_json(r);
+  EXPECT_EQ(j["spp"], 16);
+  EXPECT_EQ(j["width"], 32);
+  EXPECT_EQ(j["scene"], r.scene);
+  const nlohmann::json& s = j["settings"];
+  EXPECT_EQ(s["mode"], "equal-spp");
+  EXPECT_EQ(s["spp"], 16);
+  EXPECT_EQ(s["width"], 32);
+  EXPECT_EQ(s["height"], 32);
+  EXPECT_EQ(s["integrators"], (nlohmann::json{"uniform", "nee_mis"}));
+  EXPECT_EQ(s["max_depth"], 2);
+  EXPECT_EQ(s["rr_depth"], 0);
+  EXPECT_EQ(s["sampler"], "sobol");
+  EXPECT_EQ(s["seed"], 7);
+  EXPECT_EQ(s["light_selection"], "power");
+  EXPECT_EQ(s["mis_heuristic"], "power");
+  EXPECT_EQ(s["uniform_measure"], "solid-angle");
+  EXPECT_FALSE(s.contains("mis_light_probability"));  // no mis variant
+  EXPECT_EQ(s["reference_spp"], 256);
+  EXPECT_TRUE(s.contains("threads"));
+  EXPECT_TRUE(s.contains("exposure"));
+  const std::string line = "Settings: max depth 2, no Russian roulette, sobol sampler, seed 7, power light selection, "
+                           "power MIS heuristic, uniform measure solid-angle.";
+  EXPECT_NE(report_markdown(r).find(line), std::string::npos) << report_markdown(r);
+  EXPECT_NE(report_html(r).find(line), std::string::npos);
+
+  r.equal_time = true;
+  r.time_budget = 2;
+  r.reference_spp = 0;
+  r.reference_source = "ref.exr";
+  r.variants[0].name = "mis";
+  const nlohmann::json t = report_json(r)["settings"];
+  EXPECT_EQ(t["mode"], "equal-time");
+  EXPECT_EQ(t["time_budget"], 2.0);
+  EXPECT_FALSE(t.contains("spp"));
+  EXPECT_EQ(t["mis_light_probability"], 0.5);
+  EXPECT_FALSE(t.contains("uniform_measure"));
+  EXPECT_EQ(t["reference_file"], "ref.exr");
+  EXPECT_FALSE(t.contains("reference_spp"));
+}
+
 TEST(ComparePictures, MontageAndLogLogPlot) {
   {  // LayoutAndCropRow
     Image a = make_canvas(32, 32, Color(0.5f)), b = make_canvas(32, 32, Color(0.25f));

@@ -115,14 +115,25 @@ TEST(DiffMetrics, MismatchesAreErrorsNamingBothImages) {
     EXPECT_NE(msg.find("right.exr"), std::string::npos) << msg;
     EXPECT_NE(msg.find("2x1"), std::string::npos) << msg;
   }
-  Image grey(2, 1, {"Y"});
+  Image alpha_only(2, 1, {"A"});
   try {
-    compute_metrics(tiny_a(), grey, o);
+    compute_metrics(tiny_a(), alpha_only, o);
     FAIL() << "missing channels accepted";
   } catch (const DiffError& e) {
     EXPECT_NE(std::string(e.what()).find("right.exr"), std::string::npos) << e.what();
   }
   EXPECT_THROW(z_test(tiny_a(), tiny_b(), {}, o), DiffError);  // reference without variance channels
+}
+
+TEST(DiffMetrics, AGreyImageComparesAsEqualRGB) {
+  // One channel named Y (a greyscale PNG as OpenImageIO reads it) stands for R = G = B.
+  Image grey(2, 1, {"Y"});
+  grey.at(0, 0, 0) = 0.25f;
+  grey.at(1, 0, 0) = 0.5f;
+  const Image rgb = rgb_image(2, 1, {0.25f, 0.25f, 0.25f, 0.5f, 0.5f, 0.5f});
+  EXPECT_EQ(compute_metrics(grey, rgb).mse, 0.0);
+  const Image off = rgb_image(2, 1, {0.25f, 0.25f, 0.35f, 0.5f, 0.5f, 0.5f});
+  EXPECT_NEAR(compute_metrics(grey, off).max_abs, 0.1, 1e-6);
 }
 
 // Two independent renders of the same mean: 64x64x3 = 12288 pixel-channels, each with sigma 0.01 (A) and 0.02 (B)

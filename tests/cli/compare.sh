@@ -57,4 +57,35 @@ expect 2 "$LUMIS" compare "$SCENE" --width 32 --height 32 --crop 30,30,8,8 -o "$
 expect 2 "$LUMIS" compare "$SCENE" --width 16 --height 16 --reference "$D/reference.exr" -o "$T/bad"
 grep -q "reference.exr" "$T/err" || fail "reference size message"
 
+# --spp and --time together: no silent choice of one (equal samples or equal time), and no folder left behind.
+expect 2 "$LUMIS" compare "$SCENE" --width 16 --height 16 --spp 1 --time 0.1 -o "$T/both"
+grep -q "equal samples" "$T/err" || fail "--spp with --time message: $(cat "$T/err")"
+[ ! -e "$T/both" ] || fail "--spp with --time created the output folder"
+# Rejected inputs leave no empty output folder: a reference of the wrong size (2), a missing one (1).
+[ ! -e "$T/bad" ] || fail "a rejected run left $T/bad behind"
+expect 1 "$LUMIS" compare "$SCENE" --width 16 --height 16 --reference "$T/missing.exr" -o "$T/nofile"
+grep -q "missing.exr" "$T/err" || fail "missing reference message: $(cat "$T/err")"
+[ ! -e "$T/nofile" ] || fail "a missing reference left $T/nofile behind"
+# -o naming a file (or a path through one) is a usage error with a plain message, not a C++ exception.
+: >"$T/a.png"
+expect 2 "$LUMIS" compare "$SCENE" --width 16 --height 16 --spp 1 -o "$T/a.png"
+grep -q "a.png: exists and is not a folder" "$T/err" || fail "-o a file: $(cat "$T/err")"
+grep -qi "filesystem error" "$T/err" && fail "raw exception: $(cat "$T/err")"
+expect 2 "$LUMIS" compare "$SCENE" --width 16 --height 16 --spp 1 -o "$T/a.png/sub"
+grep -q "a.png is not a folder" "$T/err" || fail "-o through a file: $(cat "$T/err")"
+
+# --help: --integrator is not advertised (and still refused helpfully), --time and --spp are worded for compare.
+expect 0 "$LUMIS" compare --help
+grep -Eq -- '--integrator( |$)' "$T/out" && fail "--help advertises --integrator: $(cat "$T/out")"
+grep -q -- "--integrators" "$T/out" || fail "--help lacks --integrators"
+grep -A1 -- '^ *--time ' "$T/out" | grep -q "Equal time" || fail "--time help: $(grep -A1 -- --time "$T/out")"
+grep -A1 -- '^ *--spp ' "$T/out" | grep -q "default: the scene's" || fail "--spp help: $(grep -A1 -- --spp "$T/out")"
+expect 2 "$LUMIS" compare "$SCENE" --integrator mis -o "$T/refused"
+grep -q "use --integrators" "$T/err" || fail "--integrator refusal: $(cat "$T/err")"
+
+# report.json's settings.
+grep -q '"settings"' "$D/report.json" || fail "report.json has no settings"
+grep -q '"max_depth": 2' "$D/report.json" || fail "settings lack max_depth"
+grep -q '^Settings: max depth 2' "$D/report.md" || fail "report.md lacks the settings line"
+
 echo "compare.sh: all checks passed"
