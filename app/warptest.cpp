@@ -10,17 +10,13 @@
 #include <optional>
 
 #include "core/chi2.h"
+#include "core/file_ext.h"
 #include "core/image_io.h"
 #include "core/warp.h"
 
 namespace lumis {
 
 namespace {
-
-struct Warp {
-  std::function<std::optional<Vec3>(Vec2)> sample;
-  std::function<double(Vec3)> pdf;
-};
 
 struct WarpEntry {
   const char* name;
@@ -29,7 +25,37 @@ struct WarpEntry {
   std::function<Warp(float)> make;
   float param_lo = 0, param_hi = 0;  ///< the open interval (lo, hi) `param` must lie in; hi is included if hi_closed
   bool hi_closed = false;
+  /// For a lobe about the pole: the factor k >= 1 by which the cells' directions are stretched (nullptr: none).
+  std::function<double(float)> stretch;
+  /// Why the test cannot decide at this param, inside the domain though it is (empty when it can; nullptr: always).
+  std::function<std::string(float)> undecidable;
 };
+
+// The cells are uniform in (cos theta, phi), so the top row reaches 0.32 rad from the pole. A GGX lobe much narrower
+// than at the default alpha = 0.3 falls inside that row, where neither the histogram nor the pdf's integral over a
+// cell (a near-delta between quadrature points) can tell a right sampler from a wrong one. Below alpha = 0.3 the
+// cells are therefore laid out in directions stretched by k = 0.3 / alpha, where the lobe is as wide as at 0.3.
+double ggx_stretch(float alpha) { return std::max(1.0, 0.3 / alpha); }
+// D peaks at 1 / (pi alpha^2), beyond the float range below alpha = 3e-20 (1e-19 passes).
+std::string ggx_undecidable(float alpha) {
+  return alpha < 1e-19f ? "the density at the lobe's peak, 1 / (pi alpha^2), exceeds the float range; the test "
+                          "decides for alpha from 1e-19"
+                        : "";
+}
+// Likewise a cap narrower than the default's (cos_max 0.9) is stretched to a rim at cos theta = 0.875, mid-row: a
+// rim on a row's edge would be sorted by rounding there.
+double cap_stretch(float cos_max) {
+  const auto tan_radius = [](double c) { return std::sqrt(1 - c * c) / c; };
+  return cos_max > 0.9f ? tan_radius(0.875) / tan_radius(cos_max) : 1.0;
+}
+// Near the pole a float direction resolves cos theta to 6e-8, so the rim that spherical_cap_pdf sees moves by up to
+// 3e-8 / (1 - cos_max) of the cap. Measured: cos_max 0.9999 passes with 1e8 samples, 0.99995 fails with 1e8 and
+// 0.99999 with 1e6, exact sampler and pdf alike.
+std::string cap_undecidable(float cos_max) {
+  return cos_max > 0.9999f ? "float directions resolve cos theta only to 6e-8, too coarse at the rim of so small a "
+                             "cap; the test decides for cos_max up to 0.9999"
+                           : "";
+}
 
 // GGX visible normals are tested for a view direction 45 degrees off the normal, where the visible-normal density is
 // clearly asymmetric.
@@ -80,11 +106,11 @@ const std::vector<WarpEntry>& registry() {
          return Warp{[=](Vec2 u) -> std::optional<Vec3> { return sample_spherical_cap(u, cos_max); },
                      [=](Vec3 w) { return double(spherical_cap_pdf(w, cos_max)); }};
        },
-       -1.0f, 1.0f},
+       -1.0f, 1.0f, false, cap_stretch, cap_undecidable},
       {"ggx_heitz", "alpha", 0.3f, [](float alpha) { return ggx_warp(VndfMethod::Heitz2018, alpha); }, 0.0f, 1.0f,
-       true},
+       true, ggx_stretch, ggx_undecidable},
       {"ggx_cap", "alpha", 0.3f, [](float alpha) { return ggx_warp(VndfMethod::SphericalCap2023, alpha); }, 0.0f,
-       1.0f, true},
+       1.0f, true, ggx_stretch, ggx_undecidable},
       {"spherical_triangle", nullptr, 0, [](float) { return spherical_triangle_warp(); }},
   };
   return entries;
@@ -124,7 +150,31 @@ Image histogram_picture(const DirectionalHistogram& h, int nz, int np) {
   return img;
 }
 
+// Samples that give two cells an expected count of 5 (the fewest the chi-square test decides with); 0 when no number
+// does (the pdf lies in one cell).
+uint64_t samples_to_decide(std::vector<double> expected, uint64_t samples) {
+  std::partial_sort(expected.begin(), expected.begin() + 2, expected.end(), std::greater<>());
+  return expected[1] > 0 ? static_cast<uint64_t>(std::ceil(5.0 * static_cast<double>(samples) / expected[1])) : 0;
+}
+
 }  // namespace
+
+// The density gains the Jacobian of the inverse map, k^-2 / |(x / k, y / k, z)|^3 for a unit w. Bins in the stretched
+// directions are bins in the original ones, finer near the pole: the test still compares the sampler with its pdf.
+Warp stretched(const Warp& warp, double k) {
+  auto map = [](Vec3 w, double kxy) {
+    const double x = kxy * w.x, y = kxy * w.y, len = std::sqrt(x * x + y * y + double(w.z) * w.z);
+    return std::pair{Vec3(float(x / len), float(y / len), float(w.z / len)), len};
+  };
+  return {[=](Vec2 u) -> std::optional<Vec3> {
+            const std::optional<Vec3> w = warp.sample(u);
+            return w ? std::optional<Vec3>(map(*w, k).first) : std::nullopt;
+          },
+          [=](Vec3 w) {
+            const auto [original, len] = map(w, 1 / k);
+            return warp.pdf(original) / (k * k * len * len * len);
+          }};
+}
 
 std::vector<std::string> warptest_names() {
   std::vector<std::string> names;
@@ -154,7 +204,25 @@ int run_warptest(const std::string& name, float param, uint64_t samples, const s
     }
   }
   if (std::isnan(param)) param = it->default_param;
-  const Warp warp = it->make(param);
+  if (const std::string why = it->undecidable ? it->undecidable(param) : ""; !why.empty()) {
+    err << "warptest: " << name << " with " << it->param_help << " = " << param << ": the test cannot decide: " << why
+        << '\n';
+    return 2;
+  }
+  if (!out_png.empty()) {  // checked before the work, like render's -o
+    const std::string ext = lower_extension(out_png);
+    if (const std::string problem = output_file_problem(out_png); !problem.empty()) {
+      err << "warptest: " << out_png << ": " << problem << '\n';
+      return 2;
+    }
+    if (ext != ".png" && ext != ".exr" && ext != ".jpg" && ext != ".jpeg" && ext != ".hdr") {
+      err << "warptest: " << out_png << ": unsupported picture format '" << ext
+          << "' (use .png, or .exr, .jpg/.jpeg, .hdr)\n";
+      return 2;
+    }
+  }
+  const double k = it->stretch ? it->stretch(param) : 1.0;
+  const Warp warp = k > 1 ? stretched(it->make(param), k) : it->make(param);
 
   DirectionalTest cfg;
   if (samples > 0) cfg.samples = samples;
@@ -165,11 +233,22 @@ int run_warptest(const std::string& name, float param, uint64_t samples, const s
       },
       warp.pdf, cfg);
   const ChiSquareResult r = chi_square_test(h.observed, h.expected, cfg.alpha, cfg.num_tests);
+  // No statistic (dof 0) without an impossible sample (infinite statistic): too few samples for any verdict on
+  // the sampler, a usage error.
+  if (r.dof == 0 && !std::isinf(r.statistic)) {
+    err << "warptest: " << cfg.samples << " samples are too few for " << name << ": " << r.message;
+    if (const uint64_t need = samples_to_decide(h.expected, cfg.samples))
+      err << "; use --samples " << need << " or more";
+    err << '\n';
+    return 2;
+  }
 
   out << "warptest " << name;
   if (it->param_help) out << " (" << it->param_help << " = " << param << ")";
   out << ": " << cfg.samples << " samples in " << cfg.cos_theta_bins << " x " << cfg.phi_bins
-      << " (cos theta, phi) cells, seed " << cfg.seed << '\n';
+      << " (cos theta, phi) cells";
+  if (k > 1) out << " of directions stretched by " << k << " in x and y (so that the lobe spans the cells)";
+  out << ", seed " << cfg.seed << '\n';
   out << std::setprecision(6) << "  chi-square statistic " << r.statistic << ", dof " << r.dof << ", p-value "
       << r.p_value << ", alpha " << r.significance << '\n';
   out << "  " << (r.passed ? "PASSED" : "FAILED") << ": " << r.message << '\n';

@@ -3,11 +3,25 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "core/math.h"
+
 namespace lumis {
+
+/// A sampling routine (a direction, nullopt when it fails) and its solid-angle density in the same frame.
+struct Warp {
+  std::function<std::optional<Vec3>(Vec2)> sample;
+  std::function<double(Vec3)> pdf;
+};
+
+/// `warp` seen through the bijection w -> normalize(k x, k y, z), k >= 1: its samples mapped and its density
+/// transformed to match, so that a lobe about the pole k times narrower than the histogram's cells spans them.
+Warp stretched(const Warp& warp, double k);
 
 /// Names accepted by run_warptest, in the order they are listed to the user.
 std::vector<std::string> warptest_names();
@@ -15,9 +29,12 @@ std::vector<std::string> warptest_names();
 /// Draws `samples` directions from the named warp (param: cos_max for spherical_cap, alpha for ggx_*, NaN for
 /// the default), bins them in (cos theta, phi) cells, compares with the pdf integrated over each cell, prints the
 /// statistic, dof, p-value and verdict to `out`, and when out_png is not empty writes the two histograms side by
-/// side on one colour scale. Returns 0 if the chi-square test passes, 1 if it fails, 2 for an unknown name (the
-/// valid names are printed) or a param outside the warp's domain (or given to a warp without one), 3 if the
-/// picture could not be written; errors go to `err`.
+/// side on one colour scale. GGX lobes narrower than at alpha = 0.3, and caps narrower than at cos_max = 0.9, are
+/// binned in `stretched` directions, so that the lobe spans the cells. Returns 0 if the chi-square test passes, 1 if
+/// it fails, 2 for a usage error: an unknown name (the valid names are printed), a param outside the warp's domain
+/// (or given to a warp without one) or where the test cannot decide (cos_max above 0.9999, alpha below 1e-19), an
+/// output path that cannot be written or has an unsupported extension (checked before sampling), or too few samples
+/// for the test to decide (the number needed is printed); 3 if the picture could not be written; errors go to `err`.
 int run_warptest(const std::string& name, float param, uint64_t samples, const std::string& out_png,
                  std::ostream& out, std::ostream& err);
 

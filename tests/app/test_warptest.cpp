@@ -7,7 +7,9 @@
 #include <sstream>
 
 #include "app/warptest.h"
+#include "core/chi2.h"
 #include "core/image_io.h"
+#include "core/warp.h"
 
 namespace lumis {
 namespace {
@@ -61,6 +63,91 @@ TEST(Warptest, ParamOutsideTheDomainIsAUsageError) {
   }
   std::ostringstream out, err;
   EXPECT_EQ(run_warptest("ggx_cap", 1.0f, 100'000, "", out, err), 0) << out.str() << err.str();
+}
+
+// Alpha may be anywhere in (0, 1]. Lobes much narrower than the cells (alpha 1e-4: all samples in the top row, the
+// pdf a near-delta between the quadrature points) used to make exact samplers FAIL; they are binned in stretched
+// directions now.
+TEST(Warptest, TinyGgxAlphasPass) {
+  for (const char* name : {"ggx_heitz", "ggx_cap"})
+    for (const float alpha : {1e-3f, 1e-4f, 1e-6f}) {
+      std::ostringstream out;
+      EXPECT_EQ(run_warptest(name, alpha, 200'000, "", out, out), 0) << name << " " << alpha << "\n" << out.str();
+      EXPECT_NE(out.str().find("stretched"), std::string::npos) << out.str();
+    }
+}
+
+// Stretching keeps the test's power: GGX samples at alpha 1e-4 pass against their own density and fail against the
+// density of a lobe 10% wider (one tenth of the lobe's width, all of it within 0.001 rad of the pole).
+TEST(Warptest, StretchedCellsStillRejectAWrongLobe) {
+  const Vec3 wo{0.70710678f, 0.0f, 0.70710678f};
+  const auto ggx = [&](float sample_alpha, float pdf_alpha) {
+    return Warp{[=](Vec2 u) -> std::optional<Vec3> {
+                  return sample_ggx_vndf(wo, sample_alpha, sample_alpha, u, VndfMethod::SphericalCap2023);
+                },
+                [=](Vec3 wm) { return double(ggx_vndf_pdf(wo, wm, pdf_alpha, pdf_alpha)); }};
+  };
+  const auto test = [](const Warp& w) {
+    DirectionalTest cfg;
+    cfg.samples = 200'000;
+    return chi_square_directions(
+        [&](Pcg32& rng) {
+          const float u0 = rng.next_float(), u1 = rng.next_float();
+          return w.sample(Vec2(u0, u1));
+        },
+        w.pdf, cfg);
+  };
+  const ChiSquareResult right = test(stretched(ggx(1e-4f, 1e-4f), 3000));
+  EXPECT_TRUE(right.passed) << right.message;
+  const ChiSquareResult wrong = test(stretched(ggx(1e-4f, 1.1e-4f), 3000));
+  EXPECT_FALSE(wrong.passed) << wrong.message;
+  // A cap of cos_max 0.999 against the density of one 10% larger in solid angle: in unstretched cells both lie in
+  // the top row, which only sees the azimuth.
+  const auto cap = [](float sample_cos, float pdf_cos) {
+    return Warp{[=](Vec2 u) -> std::optional<Vec3> { return sample_spherical_cap(u, sample_cos); },
+                [=](Vec3 w) { return double(spherical_cap_pdf(w, pdf_cos)); }};
+  };
+  EXPECT_TRUE(test(stretched(cap(0.999f, 0.999f), 20)).passed);
+  EXPECT_FALSE(test(stretched(cap(0.999f, 0.9989f), 20)).passed);
+}
+
+// Narrow caps are stretched too; a cap so small that float directions cannot place its rim, or a GGX alpha whose peak
+// density overflows float, is reported as undecidable (2), not as a failed sampler.
+TEST(Warptest, NarrowCapsPassAndUndecidableParamsSaySo) {
+  for (const float cos_max : {0.99f, 0.9999f}) {
+    std::ostringstream out;
+    EXPECT_EQ(run_warptest("spherical_cap", cos_max, 200'000, "", out, out), 0) << cos_max << "\n" << out.str();
+    EXPECT_NE(out.str().find("stretched"), std::string::npos) << out.str();
+  }
+  const std::pair<const char*, float> undecidable[] = {{"spherical_cap", 0.99999f}, {"ggx_heitz", 1e-20f}};
+  for (const auto& [name, param] : undecidable) {
+    std::ostringstream out, err;
+    EXPECT_EQ(run_warptest(name, param, 200'000, "", out, err), 2) << name << " " << param << out.str();
+    EXPECT_NE(err.str().find("cannot decide"), std::string::npos) << err.str();
+    EXPECT_EQ(out.str(), "");
+  }
+}
+
+// Too few samples for any verdict is not a failed sampler (1) but a usage error (2) that says how many are needed.
+TEST(Warptest, TooFewSamplesToDecideIsAUsageError) {
+  std::ostringstream out, err;
+  EXPECT_EQ(run_warptest("uniform_sphere", NAN, 1000, "", out, err), 2) << out.str() << err.str();
+  EXPECT_NE(err.str().find("cannot decide"), std::string::npos) << err.str();
+  const size_t at = err.str().find("use --samples ");
+  ASSERT_NE(at, std::string::npos) << err.str();
+  EXPECT_NEAR(std::stod(err.str().substr(at + 14)), 16000, 2) << err.str();  // 5 per cell, 3200 equal cells
+}
+
+// The picture's path is checked before any sampling: nothing is printed, no statistic computed.
+TEST(Warptest, UnwritablePictureIsRefusedBeforeSampling) {
+  const auto dir = temp_dir();
+  for (const std::string& png : {(dir / "missing" / "w.png").string(), (dir / "w.tif").string(), dir.string()}) {
+    std::ostringstream out, err;
+    EXPECT_EQ(run_warptest("cosine_hemisphere", NAN, 100'000, png, out, err), 2) << png << ": " << err.str();
+    EXPECT_EQ(out.str(), "") << png;
+    EXPECT_NE(err.str().find(png), std::string::npos) << err.str();
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Warptest, NoPictureWhenPathEmpty) {
