@@ -48,6 +48,25 @@ std::string type_name(int type) {
   }
 }
 
+std::string component_name(int ctype, bool normalized) {
+  const std::string prefix = normalized ? "normalized " : "";
+  switch (ctype) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return prefix + "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return prefix + "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return prefix + "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return prefix + "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return prefix + "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return prefix + "FLOAT";
+    default: return std::to_string(ctype);
+  }
+}
+
+/// Indices: any unsigned integer type, not normalized.
+const ComponentTypes kIndices = {{{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, false},
+                                  {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, false},
+                                  {TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, false}},
+                                 /*quantizable=*/false};
+
 /// One component as float; normalized integers follow glTF's max(c / (2^(n-1) - 1), -1) and c / (2^n - 1).
 float decode_component(const unsigned char* p, int ctype, bool normalized) {
   switch (ctype) {
@@ -94,7 +113,10 @@ struct Packed {
   bool normalized = false;
 };
 
-Packed pack_accessor(const Context& ctx, int index, const std::string& where, const std::vector<int>& types) {
+/// Accessor `index` after checking what its use (`where`) allows: its element type one of `types`, its component
+/// type one of `components`. Nothing is read yet.
+const tinygltf::Accessor& checked_accessor(const Context& ctx, int index, const std::string& where,
+                                           const std::vector<int>& types, const ComponentTypes& components) {
   const auto& accessors = ctx.model.accessors;
   if (index < 0 || static_cast<size_t>(index) >= accessors.size())
     ctx.fail(where, "accessor index " + std::to_string(index) + " out of range (the file has " +
@@ -111,14 +133,37 @@ Packed pack_accessor(const Context& ctx, int index, const std::string& where, co
   }
   if (!type_ok) ctx.fail(at, "type " + type_name(a.type) + ", expected " + expected + used);
 
+  if (component_size(a.componentType) == 0)
+    ctx.fail(at, "invalid componentType " + std::to_string(a.componentType) + used);
+  if (a.normalized &&
+      (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT || a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+    ctx.fail(at + ".normalized", "normalized is not allowed for FLOAT or UNSIGNED_INT components");
+  bool component_ok = false;
+  expected.clear();
+  for (size_t i = 0; i < components.allowed.size(); ++i) {
+    const auto [ctype, normalized] = components.allowed[i];
+    component_ok |= a.componentType == ctype && a.normalized == normalized;
+    expected += (i == 0 ? "" : i + 1 == components.allowed.size() ? " or " : ", ") + component_name(ctype, normalized);
+  }
+  if (!component_ok)
+    ctx.fail(at + ".componentType",
+             component_name(a.componentType, a.normalized) + ", expected " + expected + used +
+                 (components.quantizable ? "; other types need KHR_mesh_quantization, which lumis does not support"
+                                         : ""));
+  return a;
+}
+
+Packed pack_accessor(const Context& ctx, int index, const std::string& where, const std::vector<int>& types,
+                     const ComponentTypes& components) {
+  const tinygltf::Accessor& a = checked_accessor(ctx, index, where, types, components);
+  const std::string at = indexed("accessors", index);
+  const std::string used = " (used by " + where + ")";
+
   Packed p;
   p.components = type_components(a.type);
   p.ctype = a.componentType;
   p.normalized = a.normalized;
   const int csize = component_size(a.componentType);
-  if (csize == 0) ctx.fail(at, "invalid componentType " + std::to_string(a.componentType) + used);
-  if (a.normalized && a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
-    ctx.fail(at, "normalized is only allowed for integer component types");
   p.elem_size = csize * p.components;
   p.count = a.count;
   // Guards the size arithmetic below; no real accessor comes near 2^32 elements.
@@ -191,14 +236,14 @@ std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx, in
   return {data.data() + v.byteOffset, v.byteLength};
 }
 
-const FloatData& AccessorCache::floats(int index, const std::string& where, std::vector<int> types, bool finite) {
+const FloatData& AccessorCache::floats(int index, const std::string& where, std::vector<int> types,
+                                       const ComponentTypes& components, bool finite) {
   if (auto it = floats_.find(index); it != floats_.end()) {
-    // Cached under another use: the type must still be one this caller accepts.
-    const int t = ctx_.model.accessors[index].type;
-    if (std::find(types.begin(), types.end(), t) == types.end()) pack_accessor(ctx_, index, where, types);
+    // Cached under another use: the types must still be ones this caller accepts.
+    checked_accessor(ctx_, index, where, types, components);
     return it->second;
   }
-  const Packed p = pack_accessor(ctx_, index, where, types);
+  const Packed p = pack_accessor(ctx_, index, where, types, components);
   FloatData out;
   out.components = p.components;
   out.values.resize(p.count * p.components);
@@ -215,11 +260,7 @@ const FloatData& AccessorCache::floats(int index, const std::string& where, std:
 
 const std::vector<uint32_t>& AccessorCache::uints(int index, const std::string& where) {
   if (auto it = uints_.find(index); it != uints_.end()) return it->second;
-  const Packed p = pack_accessor(ctx_, index, where, {TINYGLTF_TYPE_SCALAR});
-  if (p.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && p.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-      p.ctype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-    ctx_.fail(indexed("accessors", index),
-              "componentType must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT (used by " + where + ")");
+  const Packed p = pack_accessor(ctx_, index, where, {TINYGLTF_TYPE_SCALAR}, kIndices);
   std::vector<uint32_t> out(p.count);
   for (size_t i = 0; i < p.count; ++i) out[i] = decode_uint(&p.bytes[i * p.elem_size], p.ctype);
   return uints_.emplace(index, std::move(out)).first->second;

@@ -47,13 +47,31 @@ struct FloatData {
   size_t count() const { return components ? values.size() / components : 0; }
 };
 
+/// The component types (TINYGLTF_COMPONENT_TYPE_*, each plain or normalized) that core glTF 2.0 allows an accessor
+/// where it is used. lumis does not support KHR_mesh_quantization, which allows more for vertex attributes.
+struct ComponentTypes {
+  std::vector<std::pair<int, bool>> allowed;  ///< (component type, normalized)
+  bool quantizable = true;                    ///< KHR_mesh_quantization would allow others (said in messages)
+};
+/// FLOAT only: POSITION, NORMAL, TANGENT, instance TRANSLATION and SCALE.
+inline const ComponentTypes kFloat = {{{TINYGLTF_COMPONENT_TYPE_FLOAT, false}}};
+/// FLOAT or normalized unsigned integers: TEXCOORD_n, COLOR_n.
+inline const ComponentTypes kFloatOrUnorm = {{{TINYGLTF_COMPONENT_TYPE_FLOAT, false},
+                                              {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, true},
+                                              {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, true}}};
+/// FLOAT or normalized signed integers: instance ROTATION (EXT_mesh_gpu_instancing).
+inline const ComponentTypes kFloatOrSnorm = {{{TINYGLTF_COMPONENT_TYPE_FLOAT, false},
+                                              {TINYGLTF_COMPONENT_TYPE_BYTE, true},
+                                              {TINYGLTF_COMPONENT_TYPE_SHORT, true}}};
+
 /// Decoded accessors, each read and validated once however many primitives share it.
 class AccessorCache {
  public:
   explicit AccessorCache(Context& ctx) : ctx_(ctx) {}
-  /// Accessor `index`, referenced from `where`; its element type must be one of `types` (TINYGLTF_TYPE_*).
-  /// With `finite`, NaN or Inf values are an error.
-  const FloatData& floats(int index, const std::string& where, std::vector<int> types, bool finite = true);
+  /// Accessor `index`, referenced from `where`; its element type must be one of `types` (TINYGLTF_TYPE_*) and its
+  /// component type one of `components`. With `finite`, NaN or Inf values are an error.
+  const FloatData& floats(int index, const std::string& where, std::vector<int> types,
+                          const ComponentTypes& components, bool finite = true);
   /// Scalar unsigned-integer accessor (indices).
   const std::vector<uint32_t>& uints(int index, const std::string& where);
 

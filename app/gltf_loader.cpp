@@ -2,8 +2,12 @@
 // world-space meshes. Accessors are in gltf_accessor.cpp, materials in gltf_materials.cpp, primitives in
 // gltf_primitives.cpp.
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+
+#include <nlohmann/json.hpp>
 
 #include "app/gltf_internal.h"
 
@@ -14,12 +18,60 @@ using namespace gltf;
 
 namespace {
 
-/// Keep embedded images encoded until a material needs them (decoded then, from validated byte ranges); external
-/// images are read later through OpenImageIO, so tinygltf's copy of their bytes is dropped here.
+/// Keep embedded images encoded until a material needs them (decoded then by OpenImageIO, from validated byte ranges,
+/// as external images are); tinygltf's copy of external images' bytes is dropped here.
 bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
                       const unsigned char* bytes, int size, void*) {
   if (image->bufferView < 0 && image->uri.empty()) image->image.assign(bytes, bytes + size);  // data: URI
   return true;
+}
+
+/// asset.version and asset.minVersion: lumis reads glTF 2.0 (a later 2.x file must read as 2.0).
+void check_version(const Context& ctx, const std::string& version, const std::string& min_version) {
+  if (version.rfind("2.", 0) != 0)
+    ctx.fail("asset.version", "glTF version \"" + version + "\": lumis reads glTF 2.0 (major version 2)");
+  if (!min_version.empty() && min_version != "2.0")
+    ctx.fail("asset.minVersion", "the file needs glTF " + min_version + "; lumis reads glTF 2.0");
+}
+
+/// buffers[i]: an external file (not a data: URI) must be in the glTF file's folder and hold byteLength bytes.
+void check_buffer_file(const Context& ctx, size_t i, const std::string& uri, uint64_t byte_length) {
+  if (uri.empty() || uri.rfind("data:", 0) == 0) return;
+  const std::string at = indexed("buffers", i);
+  const std::string file = resolve_uri(ctx, uri);
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec))
+    ctx.fail(at + ".uri", "buffer file '" + uri + "' not found (looked for " + file + ")");
+  const uint64_t size = fs::file_size(file, ec);
+  if (!ec && size != byte_length)
+    ctx.fail(at + ".byteLength", "is " + std::to_string(byte_length) + ", but the file " + file + " has " +
+                                     std::to_string(size) + " bytes");
+}
+
+/// Where tinygltf rejects a file, name the cause in glTF terms when it is one of the likely ones above: a version
+/// other than 2.0 (the structure of 1.0 differs) or a missing or short buffer file. Returns when it is none of them.
+void explain_rejection(const Context& ctx, const std::string& path, bool binary) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (binary) {  // the JSON chunk: 12-byte header, chunk length, "JSON", the text
+    uint32_t length = 0;
+    if (text.size() < 20 || text.compare(16, 4, "JSON") != 0) return;
+    std::memcpy(&length, &text[12], 4);
+    if (length > text.size() - 20) return;
+    text = text.substr(20, length);
+  }
+  const auto doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (!doc.is_object()) return;
+  if (auto a = doc.find("asset"); a != doc.end() && a->is_object() && a->contains("version") &&
+                                  (*a)["version"].is_string())
+    check_version(ctx, (*a)["version"], a->value("minVersion", std::string()));
+  if (auto b = doc.find("buffers"); b != doc.end() && b->is_array())
+    for (size_t i = 0; i < b->size(); ++i) {
+      const auto& buffer = (*b)[i];
+      if (buffer.is_object() && buffer.contains("uri") && buffer["uri"].is_string() &&
+          buffer.contains("byteLength") && buffer["byteLength"].is_number_unsigned())
+        check_buffer_file(ctx, i, buffer["uri"], buffer["byteLength"]);
+    }
 }
 
 void parse_file(Context& ctx, const std::string& path) {
@@ -38,8 +90,14 @@ void parse_file(Context& ctx, const std::string& path) {
     while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
     return s;
   };
-  if (!ok || !err.empty())
+  if (!ok || !err.empty()) {
+    explain_rejection(ctx, path, binary);
     ctx.fail("", std::string(binary ? "invalid .glb: " : "invalid glTF: ") + trim(err.empty() ? warn : err));
+  }
+  check_version(ctx, ctx.model.asset.version, ctx.model.asset.minVersion);
+  // tinygltf also looks in the working folder: a buffer must be where the file says.
+  for (size_t i = 0; i < ctx.model.buffers.size(); ++i)
+    check_buffer_file(ctx, i, ctx.model.buffers[i].uri, ctx.model.buffers[i].data.size());
 
   // Missing external images: name the URI (tinygltf only warns).
   for (size_t i = 0; i < ctx.model.images.size(); ++i) {
@@ -135,10 +193,10 @@ std::vector<Mat4> gpu_instances(Context& ctx, AccessorCache& acc, const tinygltf
   size_t count = 0;
   bool any = false;
   const FloatData *t = nullptr, *r = nullptr, *s = nullptr;
-  auto get = [&](const char* name, int type) -> const FloatData* {
+  auto get = [&](const char* name, int type, const ComponentTypes& components) -> const FloatData* {
     if (!attrs.Has(name)) return nullptr;
     if (!attrs.Get(name).IsInt()) ctx.fail(eat + "." + name, "expected an accessor index");
-    const FloatData& d = acc.floats(attrs.Get(name).GetNumberAsInt(), eat + "." + name, {type});
+    const FloatData& d = acc.floats(attrs.Get(name).GetNumberAsInt(), eat + "." + name, {type}, components);
     if (any && d.count() != count)
       ctx.fail(eat + "." + name, "has " + std::to_string(d.count()) + " elements, expected " +
                                      std::to_string(count) + " like the other instance attributes");
@@ -146,9 +204,9 @@ std::vector<Mat4> gpu_instances(Context& ctx, AccessorCache& acc, const tinygltf
     any = true;
     return &d;
   };
-  t = get("TRANSLATION", TINYGLTF_TYPE_VEC3);
-  r = get("ROTATION", TINYGLTF_TYPE_VEC4);
-  s = get("SCALE", TINYGLTF_TYPE_VEC3);
+  t = get("TRANSLATION", TINYGLTF_TYPE_VEC3, kFloat);
+  r = get("ROTATION", TINYGLTF_TYPE_VEC4, kFloatOrSnorm);
+  s = get("SCALE", TINYGLTF_TYPE_VEC3, kFloat);
   if (!any) return {};
   for (size_t i = 0; i < count; ++i) {
     Mat4 m;

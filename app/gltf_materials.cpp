@@ -47,18 +47,14 @@ Image to_rgba(Image src) {
   return out;
 }
 
-/// Whether encoded PNG bytes carry alpha (colour type 4 or 6, or a tRNS chunk); JPEG never does.
-bool png_has_alpha(const unsigned char* p, size_t n) {
-  static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (n < 33 || std::memcmp(p, sig, 8) != 0) return false;
-  if (p[25] == 4 || p[25] == 6) return true;
-  for (size_t at = 8; at + 8 <= n;) {
-    const size_t len = (size_t(p[at]) << 24) | (size_t(p[at + 1]) << 16) | (size_t(p[at + 2]) << 8) | p[at + 3];
-    if (std::memcmp(p + at + 4, "tRNS", 4) == 0) return true;
-    if (std::memcmp(p + at + 4, "IDAT", 4) == 0) return false;
-    at += 12 + len;
-  }
-  return false;
+/// OpenImageIO's reader for encoded image bytes: the format their signature shows (for files, too, OpenImageIO goes by
+/// the contents when the extension is wrong), else the declared mime type's, whose reader then says what is wrong.
+std::string reader_for(const unsigned char* p, size_t n, const std::string& mime_type) {
+  static const unsigned char png[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  static const unsigned char jpeg[3] = {0xff, 0xd8, 0xff};
+  if (n >= 8 && std::memcmp(p, png, 8) == 0) return "png";
+  if (n >= 3 && std::memcmp(p, jpeg, 3) == 0) return "jpeg";
+  return mime_type == "image/png" ? "png" : "jpeg";
 }
 
 class ImageCache {
@@ -104,36 +100,25 @@ class ImageCache {
         ctx_.fail(at, "cannot load image '" + img.uri + "': " + e.what());
       }
     }
-    // Embedded: a bufferView (checked here, as tinygltf does not) or a data: URI kept raw by our image callback.
+    // Embedded: a bufferView (checked here, as tinygltf does not) or a data: URI kept raw by our image callback,
+    // decoded by OpenImageIO from memory exactly as the same bytes in a file would be.
     if (img.mimeType != "image/png" && img.mimeType != "image/jpeg")
       ctx_.fail(at + ".mimeType", "unsupported image format '" + img.mimeType + "' (expected image/png or "
                                   "image/jpeg)");
     const unsigned char* bytes = img.image.data();
     size_t size = img.image.size();
-    if (img.bufferView >= 0) std::tie(bytes, size) = buffer_view_bytes(ctx_, img.bufferView, at + ".bufferView");
+    std::string source = "a data: URI";
+    if (img.bufferView >= 0) {
+      std::tie(bytes, size) = buffer_view_bytes(ctx_, img.bufferView, at + ".bufferView");
+      source = indexed("bufferViews", img.bufferView);
+    }
     if (size == 0) ctx_.fail(at, "image has no data");
-    tinygltf::Image decoded;
-    std::string err, warn;
-    if (!tinygltf::LoadImageData(&decoded, index, &err, &warn, 0, 0, bytes, static_cast<int>(size), nullptr))
-      ctx_.fail(at, "unsupported or corrupt embedded image: " + err);
-    // tinygltf's decoder always gives RGBA (8 or 16 bits); keep alpha only where the file has it, as OIIO does.
-    const int bits = decoded.bits;
-    if (decoded.component != 4 || (bits != 8 && bits != 16) ||
-        decoded.image.size() != size_t(decoded.width) * decoded.height * 4 * (bits / 8))
-      ctx_.fail(at, "embedded image decoded to an unexpected layout");
-    const bool alpha = png_has_alpha(bytes, size);
-    Image raw(decoded.width, decoded.height, alpha ? std::vector<std::string>{"R", "G", "B", "A"}
-                                                   : std::vector<std::string>{"R", "G", "B"});
-    const size_t pixels = size_t(decoded.width) * decoded.height;
-    for (size_t i = 0; i < pixels; ++i)
-      for (int c = 0; c < raw.channels; ++c) {
-        const size_t k = 4 * i + c;
-        float v = bits == 8 ? decoded.image[k] / 255.0f
-                            : (decoded.image[2 * k] | (decoded.image[2 * k + 1] << 8)) / 65535.0f;
-        if (srgb && c < 3) v = srgb_to_linear(v);
-        raw.data[i * raw.channels + c] = v;
-      }
-    return to_rgba(std::move(raw));
+    try {
+      const std::string reader = reader_for(bytes, size, img.mimeType);
+      return to_rgba(read_image_memory(bytes, size, reader, img.mimeType + " in " + source, srgb));
+    } catch (const ImageError& e) {
+      ctx_.fail(at, std::string("cannot decode embedded image: ") + e.what());
+    }
   }
 
   Context& ctx_;

@@ -72,23 +72,24 @@ const PrimitiveBuilder::Decoded& PrimitiveBuilder::decode(int mesh, int prim) {
   }
   if (!p.targets.empty()) ctx_.warn_once("morph", "morph targets ignored (meshes drawn with their base shape)");
 
-  d.positions = to_vec3(acc_.floats(pos_it->second, at + ".attributes.POSITION", {TINYGLTF_TYPE_VEC3}));
+  d.positions = to_vec3(acc_.floats(pos_it->second, at + ".attributes.POSITION", {TINYGLTF_TYPE_VEC3}, kFloat));
   const size_t n = d.positions.size();
-  auto attribute = [&](const char* name, std::vector<int> types) -> const FloatData* {
+  auto attribute = [&](const char* name, std::vector<int> types, const ComponentTypes& components) -> const FloatData* {
     const auto it = p.attributes.find(name);
     if (it == p.attributes.end()) return nullptr;
     const std::string aat = at + ".attributes." + name;
-    const FloatData& f = acc_.floats(it->second, aat, std::move(types));
+    const FloatData& f = acc_.floats(it->second, aat, std::move(types), components);
     if (f.count() != n)
       ctx_.fail(aat, "has " + std::to_string(f.count()) + " elements, expected " + std::to_string(n) +
                          " like POSITION");
     return &f;
   };
-  if (auto* f = attribute("NORMAL", {TINYGLTF_TYPE_VEC3})) d.normals = to_vec3(*f);
-  if (auto* f = attribute("TANGENT", {TINYGLTF_TYPE_VEC4})) d.tangents = to_vec4(*f, 1);
-  if (auto* f = attribute("TEXCOORD_0", {TINYGLTF_TYPE_VEC2})) d.uv0 = to_vec2(*f);
-  if (auto* f = attribute("TEXCOORD_1", {TINYGLTF_TYPE_VEC2})) d.uv1 = to_vec2(*f);
-  if (auto* f = attribute("COLOR_0", {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4})) d.colors = to_vec4(*f, 1);
+  if (auto* f = attribute("NORMAL", {TINYGLTF_TYPE_VEC3}, kFloat)) d.normals = to_vec3(*f);
+  if (auto* f = attribute("TANGENT", {TINYGLTF_TYPE_VEC4}, kFloat)) d.tangents = to_vec4(*f, 1);
+  if (auto* f = attribute("TEXCOORD_0", {TINYGLTF_TYPE_VEC2}, kFloatOrUnorm)) d.uv0 = to_vec2(*f);
+  if (auto* f = attribute("TEXCOORD_1", {TINYGLTF_TYPE_VEC2}, kFloatOrUnorm)) d.uv1 = to_vec2(*f);
+  if (auto* f = attribute("COLOR_0", {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, kFloatOrUnorm))
+    d.colors = to_vec4(*f, 1);
 
   std::vector<uint32_t> seq;
   if (p.indices >= 0) {

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "app/scene_error.h"
+#include "core/file_ext.h"
 #include "core/image_io.h"
 
 namespace lumis {
@@ -170,14 +171,20 @@ void JsonSceneBuilder::add_mesh_shape(const JsonNode& node) {
 void JsonSceneBuilder::add_gltf_shape(const JsonNode& node) {
   node.expect_object({"type", "name", "file", "transform", "materials", "sampling"});
   if (auto n = node.find("name")) n->as_string();  // a label for the reader: the meshes keep the file's names
-  const std::string path = resolve_path(node["file"]);
+  const JsonNode file = node["file"];
+  const std::string path = resolve_path(file);
+  const std::string ext = lower_extension(path);
+  if (ext != ".gltf" && ext != ".glb")
+    file.fail("expected a .gltf or .glb file, found " + (ext.empty() ? "no extension" : "\"" + ext + "\""));
   const Mat4 transform = node.find("transform") ? parse_transform(node["transform"]) : Mat4::identity();
   const TriangleSampling sampling = mesh_sampling(node);
   GltfScene gltf;
   try {
     gltf = load_gltf(path, transform);
   } catch (const ImageError& e) {
-    node["file"].fail(std::string("cannot read a texture of the glTF file: ") + e.what());
+    file.fail(std::string("cannot read a texture of the glTF file: ") + e.what());
+  } catch (const SceneError& e) {
+    file.fail(std::string("in ") + e.what());  // "in model.gltf:meshes[0]...: what was wrong"
   }
   std::vector<int> remap(gltf.materials.size(), -1);
   if (auto m = node.find("materials")) {
@@ -286,8 +293,8 @@ void JsonSceneBuilder::add_environment(const JsonNode& node) {
   }
   const JsonNode file = node["file"];
   const std::string path = resolve_path(file);
-  const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext != ".exr" && ext != ".hdr" && ext != ".EXR" && ext != ".HDR")
+  const std::string ext = lower_extension(path);
+  if (ext != ".exr" && ext != ".hdr")
     file.fail("an environment map must be a linear .exr or .hdr file, found \"" + ext + "\"");
   const float scale = node.find("scale") ? node["scale"].as_float(0) : 1.0f;
   const float rotation = node.find("rotation") ? node["rotation"].as_float() : 0.0f;

@@ -1,5 +1,6 @@
 #include "core/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
@@ -103,22 +104,13 @@ float srgb_to_linear(float v) {
   return std::pow((v + 0.055f) / 1.055f, 2.4f);
 }
 
-Image read_image(const std::string& path, bool srgb_to_linear_colour) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) fail(path, "no such file");
-  if (fs::is_directory(path, ec)) fail(path, "is a directory, not an image");
+namespace {
 
-  // Straight (unassociated) alpha: glTF textures store colour and coverage independently.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) {
-    std::string why = OIIO::geterror();
-    fail(path, why.empty() ? "unreadable or unsupported image format" : why);
-  }
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail(path, "image has no pixels");
-  if (spec.depth > 1) fail(path, "volume images are not supported");
+/// Every channel of an opened image as float (see read_image); `name` starts the messages.
+Image decode(OIIO::ImageInput& in, const std::string& name, bool srgb_to_linear_colour) {
+  const OIIO::ImageSpec& spec = in.spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail(name, "image has no pixels");
+  if (spec.depth > 1) fail(name, "volume images are not supported");
 
   std::vector<std::string> names = spec.channelnames;
   names.resize(spec.nchannels);
@@ -134,7 +126,7 @@ Image read_image(const std::string& path, bool srgb_to_linear_colour) {
   if (eight_bit) {
     // The common texture case, through lookup tables: several times faster than converting floats afterwards.
     std::vector<unsigned char> raw(img.data.size());
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, raw.data())) fail(path, in->geterror());
+    if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, raw.data())) fail(name, in.geterror());
     float linear[256], decoded[256];
     for (int i = 0; i < 256; ++i) {
       linear[i] = i / 255.0f;
@@ -144,16 +136,54 @@ Image read_image(const std::string& path, bool srgb_to_linear_colour) {
     for (int c = 0; c < img.channels; ++c) lut[c] = decode_channel(c) ? decoded : linear;
     for (size_t i = 0; i < raw.size(); ++i) img.data[i] = lut[i % img.channels][raw[i]];
   } else {
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.data.data()))
-      fail(path, in->geterror());
+    if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.data.data())) fail(name, in.geterror());
     // Integer-encoded files (16 bit here) carry the sRGB curve; float files are already linear.
     for (int c = 0; c < img.channels; ++c)
       if (decode_channel(c))
         for (size_t i = static_cast<size_t>(c); i < img.data.size(); i += img.channels)
           img.data[i] = srgb_to_linear(img.data[i]);
   }
-  in->close();
+  in.close();
   return img;
+}
+
+/// Straight (unassociated) alpha: glTF textures store colour and coverage independently.
+OIIO::ImageSpec read_config() {
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  return config;
+}
+
+}  // namespace
+
+Image read_image(const std::string& path, bool srgb_to_linear_colour) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail(path, "no such file");
+  if (fs::is_directory(path, ec)) fail(path, "is a directory, not an image");
+  const OIIO::ImageSpec config = read_config();
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) {
+    std::string why = OIIO::geterror();
+    fail(path, why.empty() ? "unreadable or unsupported image format" : why);
+  }
+  return decode(*in, path, srgb_to_linear_colour);
+}
+
+Image read_image_memory(const unsigned char* bytes, size_t size, const std::string& format, const std::string& name,
+                        bool srgb_to_linear_colour) {
+  // The reader takes its bytes from the proxy named in the open hints (declared first: it outlives the reader).
+  OIIO::Filesystem::IOMemReader memory(bytes, size);
+  auto in = OIIO::ImageInput::create(format);
+  if (!in || !in->supports("ioproxy")) fail(name, "no " + format + " reader that reads from memory");
+  OIIO::ImageSpec config = read_config();
+  OIIO::Filesystem::IOProxy* proxy = &memory;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  OIIO::ImageSpec spec;
+  if (!in->open(name, spec, config)) {
+    std::string why = in->geterror();
+    fail(name, why.empty() ? "unreadable " + format + " data" : why);
+  }
+  return decode(*in, name, srgb_to_linear_colour);
 }
 
 void write_image(const std::string& path, const Image& image, const WriteOptions& options) {

@@ -13,6 +13,12 @@ namespace lumis {
 /// decoded from the sRGB transfer curve. Throws ImageError naming the file on failure.
 Image read_image(const std::string& path, bool srgb_to_linear = false);
 
+/// Read an encoded image held in memory (a glTF image in a buffer or a data: URI), decoded exactly as read_image
+/// decodes the same bytes from a file. `format` is OpenImageIO's reader ("png", "jpeg"); `name` starts the
+/// ImageError's message.
+Image read_image_memory(const unsigned char* bytes, size_t size, const std::string& format, const std::string& name,
+                        bool srgb_to_linear = false);
+
 struct WriteOptions {
   float exposure = 0;  ///< stops, applied to display formats (png/jpg) only
   /// String attributes stored in the file's header ("lumis:spp" = "64", ...): EXR keeps them all; other formats

@@ -59,6 +59,24 @@ struct Bin {
   }
 };
 
+std::vector<unsigned char> file_bytes(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+/// A .glb: `json` (whose buffer 0 has no uri) and `bin` as its BIN chunk (none when empty), padded to 4 bytes.
+std::string make_glb(std::string json, std::vector<unsigned char> bin) {
+  while (json.size() % 4) json += ' ';
+  while (bin.size() % 4) bin.push_back(0);
+  auto u32 = [](size_t v) {
+    const uint32_t x = static_cast<uint32_t>(v);
+    return std::string(reinterpret_cast<const char*>(&x), 4);
+  };
+  const std::string chunk = bin.empty() ? "" : u32(bin.size()) + std::string("BIN\0", 4) +
+                                                   std::string(bin.begin(), bin.end());
+  return "glTF" + u32(2) + u32(12 + 8 + json.size() + chunk.size()) + u32(json.size()) + "JSON" + json + chunk;
+}
+
 class GltfFiles : public ::testing::Test {
  protected:
   void SetUp() override { dir_ = test::fresh_test_dir("lumis_gltf"); }
@@ -236,7 +254,7 @@ TEST_F(GltfFiles, StripsFansAndAttributeEncodings) {
 }
 
 TEST_F(GltfFiles, TexturesEmbeddedExternalSamplersAndTransforms) {
-  // A 2x1 RGBA PNG: used embedded (data: URI, decoded by tinygltf) and external (OpenImageIO).
+  // A 2x1 RGBA PNG: used embedded (data: URI) and external, both decoded by OpenImageIO.
   const std::string png = (dir_ / "tex.png").string();
   {
     const unsigned char px[8] = {200, 100, 50, 128, 0, 255, 10, 255};
@@ -303,6 +321,68 @@ TEST_F(GltfFiles, TexturesEmbeddedExternalSamplersAndTransforms) {
   EXPECT_NE(s.warnings[0].find("KHR_materials_volume"), std::string::npos);
 }
 
+// The same PNG or JPEG bytes give the same texels whether the image is an external file, a bufferView of a .glb or a
+// data: URI: OpenImageIO decodes all three (tinygltf's stb_image, once used for embedded images, decodes JPEG
+// differently by up to a few 8-bit levels).
+TEST_F(GltfFiles, EmbeddedImagesDecodeExactlyAsExternalOnes) {
+  // A colourful JPEG (libjpeg's default 4:2:0 chroma subsampling, where decoders differ most) and an RGBA PNG.
+  Image pattern(61, 37, {"R", "G", "B", "A"});
+  for (int y = 0; y < pattern.height; ++y)
+    for (int x = 0; x < pattern.width; ++x)
+      for (int c = 0; c < 4; ++c) pattern.at(x, y, c) = float(((x * 37 + y * 91 + c * 53) ^ (x * y)) % 256) / 255;
+  write_image((dir_ / "tex.jpg").string(), pattern);
+  const std::string png = (dir_ / "tex.png").string();
+  {
+    std::vector<unsigned char> px(pattern.data.size());
+    for (size_t i = 0; i < px.size(); ++i) px[i] = static_cast<unsigned char>(std::lround(pattern.data[i] * 255));
+    auto out = OIIO::ImageOutput::create(png);
+    OIIO::ImageSpec spec(pattern.width, pattern.height, 4, OIIO::TypeDesc::UINT8);
+    spec.alpha_channel = 3;
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    ASSERT_TRUE(out && out->open(png, spec) && out->write_image(OIIO::TypeDesc::UINT8, px.data()));
+    out->close();
+  }
+  const std::string prim = R"({"attributes":{"POSITION":0,"NORMAL":1},"indices":2,"material":0})";
+  // Base colour (sRGB-decoded) and metallic-roughness (linear) from the one image.
+  const std::string textures = R"(,"textures":[{"source":0}],"materials":[{"pbrMetallicRoughness":)"
+                               R"({"baseColorTexture":{"index":0},"metallicRoughnessTexture":{"index":0}}}])";
+  for (const std::string name : {"tex.jpg", "tex.png"}) {
+    SCOPED_TRACE(name);
+    const std::string mime = name == "tex.jpg" ? "image/jpeg" : "image/png";
+    const std::vector<unsigned char> bytes = file_bytes((dir_ / name).string());
+    Triangle t;
+    const GltfScene external = load_gltf(simple("external.gltf", t.bin, t.views, t.accessors, prim, R"({"mesh":0})",
+                                                R"(,"images":[{"uri":")" + name + "\"}]" + textures));
+    const GltfScene data_uri = load_gltf(
+        simple("data.gltf", t.bin, t.views, t.accessors, prim, R"({"mesh":0})",
+               R"(,"images":[{"uri":"data:)" + mime + ";base64," + base64(bytes) + "\"}]" + textures));
+    // The .glb: the image in bufferView 3 of the BIN chunk.
+    Bin bin = t.bin;
+    const size_t at = bin.add<uint8_t>({});
+    bin.bytes.insert(bin.bytes.end(), bytes.begin(), bytes.end());
+    const std::string views = t.views.substr(0, t.views.size() - 1) + "," + Triangle::view(at, bytes.size()) + "]";
+    const std::string json = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+                             R"("meshes":[{"primitives":[)" + prim + R"(]}],"buffers":[{"byteLength":)" +
+                             std::to_string(bin.bytes.size()) + R"(}],"bufferViews":)" + views +
+                             R"(,"accessors":)" + t.accessors + R"(,"images":[{"bufferView":3,"mimeType":")" + mime +
+                             "\"}]" + textures + "}";
+    const GltfScene binary = load_gltf(write("binary.glb", make_glb(json, bin.bytes)));
+    for (const GltfScene* s : {&data_uri, &binary}) {
+      for (int k = 0; k < 2; ++k) {
+        const PbrParams &a = external.materials[0].params, &b = s->materials[0].params;
+        const Image& x = *(k == 0 ? a.base_color_texture : a.metallic_roughness_texture)->image;
+        const Image& y = *(k == 0 ? b.base_color_texture : b.metallic_roughness_texture)->image;
+        ASSERT_EQ(x.channel_names, y.channel_names);
+        ASSERT_EQ(x.data.size(), y.data.size());
+        size_t differ = 0;
+        for (size_t i = 0; i < x.data.size(); ++i) differ += x.data[i] != y.data[i];
+        EXPECT_EQ(differ, 0u) << (s == &binary ? ".glb" : "data: URI") << (k == 0 ? ", sRGB" : ", linear");
+      }
+    }
+    EXPECT_EQ(external.materials[0].params.base_color_texture->image->channels, name == "tex.png" ? 4 : 3);
+  }
+}
+
 TEST_F(GltfFiles, InstancingAndDegenerateTriangles) {
   Triangle t;
   // Two more triangles: one repeating a vertex, one collinear; both dropped and counted.
@@ -327,6 +407,53 @@ TEST_F(GltfFiles, InstancingAndDegenerateTriangles) {
   expect_vec(s.meshes[1].positions[1], {11, 0, 0});  // moved by 10
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_EQ(s.warnings[0], "degenerate triangles dropped (4)");
+}
+
+// Component types as core glTF 2.0 allows them where the accessor is used (KHR_mesh_quantization, which allows
+// more, is not supported): an unsigned-byte POSITION was read as small integers, and its triangles dropped.
+TEST_F(GltfFiles, ComponentTypesAreThoseOfCoreGltf) {
+  Triangle t;
+  // accessors[3]: the positions' bytes as normalized unsigned bytes (VEC3), [4] as plain unsigned bytes (VEC2).
+  const std::string acc = t.accessors.substr(0, t.accessors.size() - 1) +
+                          R"(,{"bufferView":0,"componentType":5121,"normalized":true,"count":3,"type":"VEC3"})"
+                          R"(,{"bufferView":0,"componentType":5121,"count":3,"type":"VEC2"}])";
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string a = acc;
+    a.replace(a.find(from), from.size(), to);
+    return a;
+  };
+  const std::string quantization = "other types need KHR_mesh_quantization, which lumis does not support";
+  expect_error(simple("pos.gltf", t.bin, t.views, with(R"("componentType":5126)", R"("componentType":5121)"),
+                      Triangle::prim),
+               {"pos.gltf:accessors[0].componentType: UNSIGNED_BYTE, expected FLOAT (used by "
+                "meshes[0].primitives[0].attributes.POSITION)",
+                quantization});
+  expect_error(simple("normal.gltf", t.bin, t.views, acc, R"({"attributes":{"POSITION":0,"NORMAL":3}})"),
+               {"accessors[3].componentType: normalized UNSIGNED_BYTE, expected FLOAT", "attributes.NORMAL"});
+  expect_error(simple("uv.gltf", t.bin, t.views, acc, R"({"attributes":{"POSITION":0,"TEXCOORD_0":4}})"),
+               {"accessors[4].componentType: UNSIGNED_BYTE, expected FLOAT, normalized UNSIGNED_BYTE or normalized "
+                "UNSIGNED_SHORT (used by meshes[0].primitives[0].attributes.TEXCOORD_0)",
+                quantization});
+  // Allowed as COLOR_0 in the first primitive, not as NORMAL in the second (the decoded accessor is shared).
+  expect_error(simple("shared.gltf", t.bin, t.views, acc,
+                      R"({"attributes":{"POSITION":0,"COLOR_0":3}},{"attributes":{"POSITION":0,"NORMAL":3}})"),
+               {"accessors[3].componentType", "meshes[0].primitives[1].attributes.NORMAL"});
+  try {
+    load_gltf(simple("index.gltf", t.bin, t.views, with(R"("componentType":5123)", R"("componentType":5126)"),
+                     Triangle::prim));
+    ADD_FAILURE() << "float indices accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.location, "accessors[2].componentType");
+    EXPECT_EQ(e.detail, "FLOAT, expected UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT (used by "
+                        "meshes[0].primitives[0].indices)");
+  }
+  expect_error(simple("norm.gltf", t.bin, t.views,
+                      with(R"("componentType":5123)", R"("componentType":5125,"normalized":true)"), Triangle::prim),
+               {"accessors[2].normalized", "not allowed for FLOAT or UNSIGNED_INT"});
+  // EXT_mesh_gpu_instancing: TRANSLATION is FLOAT.
+  expect_error(simple("inst.gltf", t.bin, t.views, acc, Triangle::prim,
+                      R"({"mesh":0,"extensions":{"EXT_mesh_gpu_instancing":{"attributes":{"TRANSLATION":3}}}})"),
+               {"accessors[3].componentType", "EXT_mesh_gpu_instancing.attributes.TRANSLATION"});
 }
 
 TEST_F(GltfFiles, ErrorsNameTheGltfPath) {
@@ -396,6 +523,41 @@ TEST_F(GltfFiles, ErrorsNameTheGltfPath) {
   expect_error(simple("req.gltf", t.bin, t.views, t.accessors, R"({"attributes":{"POSITION":0}})", R"({"mesh":0})",
                       R"(,"extensionsRequired":["KHR_draco_mesh_compression"])"),
                {"extensionsRequired", "KHR_draco_mesh_compression"});
+  // Buffer files: missing (the path looked for named), of the wrong size, in a .gltf or a .glb.
+  auto tri = [&](const std::string& buffer, const std::string& asset = R"({"version":"2.0"})") {
+    return R"({"asset":)" + asset + R"(,"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+           R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"bufferViews":)" + t.views +
+           R"(,"accessors":)" + t.accessors + R"(,"buffers":[)" + buffer + "]}";
+  };
+  const std::string length = R"({"byteLength":)" + std::to_string(t.bin.bytes.size());
+  expect_error(write("nobuf.gltf", tri(length + R"(,"uri":"no%20such.bin"})")),
+               {"nobuf.gltf:buffers[0].uri: buffer file 'no%20such.bin' not found (looked for",
+                (dir_ / "no such.bin").string()});
+  expect_error(write("nobuf.glb", make_glb(tri(length + R"(,"uri":"nope.bin"})"), {})),
+               {"nobuf.glb:buffers[0].uri", (dir_ / "nope.bin").string()});
+  write("short.bin", std::string(t.bin.bytes.begin(), t.bin.bytes.begin() + 40));
+  expect_error(write("short.gltf", tri(length + R"(,"uri":"short.bin"})")),
+               {"short.gltf:buffers[0].byteLength: is 78, but the file", "has 40 bytes"});
+  // tinygltf falls back to the working folder; lumis looks only where the file says.
+  write("cwd.bin", std::string(t.bin.bytes.begin(), t.bin.bytes.end()));
+  fs::create_directories(dir_ / "sub");
+  const std::string sub = write("sub/cwd.gltf", tri(length + R"(,"uri":"cwd.bin"})"));
+  const fs::path cwd = fs::current_path();
+  fs::current_path(dir_);
+  expect_error(sub, {"buffers[0].uri", (dir_ / "sub" / "cwd.bin").string()});
+  fs::current_path(cwd);
+
+  // glTF 2.0 only: asset.version's major version, and minVersion.
+  expect_error(write("v1.gltf", tri(t.bin.buffer_json(), R"({"version":"1.0"})")),
+               {"v1.gltf:asset.version: glTF version \"1.0\": lumis reads glTF 2.0"});
+  expect_error(write("v3.gltf", tri(t.bin.buffer_json(), R"({"version":"3.0"})")), {"asset.version", "3.0"});
+  expect_error(write("min.gltf", tri(t.bin.buffer_json(), R"({"version":"2.0","minVersion":"2.1"})")),
+               {"asset.minVersion", "2.1"});
+  // A glTF 1.0 file proper (objects keyed by id where 2.0 has arrays), which tinygltf cannot read.
+  expect_error(write("gltf1.gltf", R"({"asset":{"version":"1.0"},"scene":"s","scenes":{"s":{"nodes":["n"]}},)"
+                                   R"("nodes":{"n":{"meshes":["m"]}},"buffers":{"b":{"uri":"b.bin"}}})"),
+               {"gltf1.gltf:asset.version", "1.0"});
+
   // A real .glb cut short.
   if (fs::exists(kAssets / "Box/glTF-Binary/Box.glb")) {
     std::ifstream in(model("Box/glTF-Binary/Box.glb"), std::ios::binary);

@@ -170,6 +170,29 @@ TEST_F(ImageIoTest, RoundTrips) {
     EXPECT_EQ(read_image(file("a.jpg")).width, 8);
     EXPECT_EQ(listing(), std::vector<std::string>{"a.jpg"});
   }
+  {  // MemoryReadsDecodeAsFileReads (glTF's embedded images)
+    reset();
+    const Image img = gradient(9, 7, {"R", "G", "B"});
+    for (const char* name : {"m.png", "m.jpg"}) {
+      write_image(file(name), img);
+      std::ifstream in(file(name), std::ios::binary);
+      const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+      const std::string format = std::string(name) == "m.png" ? "png" : "jpeg";
+      for (bool srgb : {false, true}) {
+        const Image a = read_image(file(name), srgb);
+        const Image b = read_image_memory(bytes.data(), bytes.size(), format, "embedded", srgb);
+        EXPECT_EQ(a.channel_names, b.channel_names) << name;
+        EXPECT_EQ(a.data, b.data) << name << (srgb ? " sRGB" : " linear");
+      }
+    }
+    const std::string junk = "this is not an image";
+    try {
+      read_image_memory(reinterpret_cast<const unsigned char*>(junk.data()), junk.size(), "png", "images[3]");
+      FAIL() << "expected ImageError";
+    } catch (const ImageError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("images[3]: ", 0), 0u) << e.what();
+    }
+  }
 }
 
 // Failures name the file and leave no temporary behind.

@@ -197,6 +197,14 @@ TEST(SceneLoader, FileTypeIsTheExtensionInAnyCase) {
   const std::string glb = (test_dir() / "BOX.GLB").string();
   std::filesystem::copy_file(kBoxGlb, glb, std::filesystem::copy_options::overwrite_existing);
   EXPECT_EQ(load_scene(glb)->lights.size(), 1u);  // read as glTF: the white sky a lone glTF file gets
+  // Inside a JSON scene too: a glTF shape's file and an environment map.
+  Image sky(4, 2, {"R", "G", "B"});
+  for (float& v : sky.data) v = 0.5f;
+  write_image((test_dir() / "Sky.Exr").string(), sky);
+  const auto scene = load_scene(write_scene(R"({"shapes": [{"type": "gltf", "file": "BOX.GLB"}],
+                                                "lights": [{"type": "environment", "file": "Sky.Exr"}]})"));
+  EXPECT_EQ(scene->environment, 0);
+  EXPECT_EQ(scene->geometry.geometry_count(), 1u);
 }
 
 TEST(SceneLoader, GltfFileAloneGetsFramingCameraAndWhiteSky) {

@@ -194,6 +194,32 @@ TEST(SceneLoaderErrors, MissingGltfFile) {
                      "file not found");
 }
 
+TEST(SceneLoaderErrors, GltfFileMustBeAGltfOrGlbFile) {
+  write_file("ok.json", "{}");
+  EXPECT_SCENE_ERROR(R"({"shapes": [{"type": "gltf", "file": "ok.json"}]})", "/shapes/0/file",
+                     "expected a .gltf or .glb file, found \".json\"");
+  write_file("model", "{}");
+  EXPECT_SCENE_ERROR(R"({"shapes": [{"type": "gltf", "file": "model"}]})", "/shapes/0/file",
+                     "expected a .gltf or .glb file, found no extension");
+  EXPECT_SCENE_ERROR(R"({"shapes": [{"type": "gltf", "file": ".."}]})", "/shapes/0/file",
+                     "is a folder, expected a file");
+}
+
+TEST(SceneLoaderErrors, TextureThatIsAFolder) {
+  EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "diffuse", "texture": ".."})"), "/materials/m/texture",
+                     "is a folder, expected a file");
+}
+
+// An error inside an included glTF file names the scene's shape as well as the file and its glTF path.
+TEST(SceneLoaderErrors, ErrorInsideAGltfFileNamesTheShape) {
+  const std::string gltf = write_file("Model.GLTF", R"({"asset": {"version": "1.0"}})");
+  // The extension in any case.
+  const SceneError e = load_error(R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [
+      {"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}, {"type": "gltf", "file": "Model.GLTF"}]})");
+  EXPECT_EQ(e.location, "/shapes/1/file") << e.what();
+  EXPECT_EQ(e.detail, "in " + gltf + ":asset.version: glTF version \"1.0\": lumis reads glTF 2.0 (major version 2)");
+}
+
 TEST(SceneLoaderErrors, GltfMaterialNameNotInFile) {
   EXPECT_SCENE_ERROR(R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [{"type": "gltf", "file": ")" + kBoxGlb +
                          R"(", "materials": {"Blue": "m"}}]})",

@@ -408,6 +408,24 @@ case("gltf_no_meshes", ".gltf", json.dumps({"asset": {"version": "2.0"}, "scenes
      "scene is empty")
 case("gltf_only_asset", ".gltf", json.dumps({"asset": {"version": "2.0"}}), "scene is empty")
 
+# glTF 2.0 only; component types as core glTF 2.0 allows them; buffer files named by their glTF path.
+case("gltf_version_1", ".gltf", embed(*variant(set_path(["asset", "version"], "1.0"))),
+     "asset.version: glTF version \"1.0\": lumis reads glTF 2.0")
+case("gltf_position_unsigned_byte", ".gltf", embed(*variant(set_path(["accessors", 0, "componentType"], 5121))),
+     "accessors[0].componentType: UNSIGNED_BYTE, expected FLOAT")
+case("gltf_float_indices", ".gltf", embed(*variant(set_path(["accessors", 1, "componentType"], 5126))),
+     "accessors[1].componentType: FLOAT, expected UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT")
+case("gltf_missing_buffer_uri", ".gltf",
+     json.dumps(dict(good_doc, buffers=[{"byteLength": len(good_data), "uri": "no-such-buffer.bin"}])),
+     "buffers[0].uri: buffer file 'no-such-buffer.bin' not found (looked for")
+# A glTF shape's file: .gltf or .glb, not a folder; errors inside it name the shape too.
+case("json_gltf_wrong_extension", ".json", dump(scene(shapes=[{"type": "gltf", "file": "json_empty_object.json"}])),
+     "/shapes/0/file: expected a .gltf or .glb file, found \".json\"")
+case("json_gltf_is_folder", ".json", dump(scene(shapes=[{"type": "gltf", "file": ".."}])),
+     "/shapes/0/file: is a folder, expected a file")
+case("json_gltf_error_inside", ".json", dump(scene(shapes=[sphere(), {"type": "gltf", "file": "gltf_version_1.gltf"}])),
+     "/shapes/1/file: in")
+
 # Remove stale cases (files this script no longer writes).
 keep = set(written)
 for f in os.listdir(HERE):
