@@ -204,11 +204,11 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   std::vector<double> loads{seconds_since(t0)};
 
   RenderSettings& s = scene->settings;
+  // The benchmark's defaults, then the command line's (--width alone keeps them square, as any override does).
+  s.width = s.height = o.quick ? 32 : 256;
+  s.spp = o.quick ? 1 : 4;
   apply_overrides(o.overrides, s);
   s.time_budget = 0;
-  if (!o.overrides.width) s.width = o.quick ? 32 : 256;
-  if (!o.overrides.height) s.height = o.quick ? 32 : 256;
-  if (!o.overrides.spp) s.spp = o.quick ? 1 : 4;
   scene->update_light_selector();
   res.triangles = scene->geometry.triangle_count();
   res.lights = scene->lights.size();

@@ -19,6 +19,7 @@ struct RenderOverrides {
   std::optional<int> max_depth, rr_depth, width, height, threads;
   std::optional<std::string> integrator, sampler, light_selection, mis_heuristic, uniform_measure;
   std::optional<float> time, exposure, mis_light_probability;
+  std::string camera;  ///< a glTF file's camera (SceneLoadOptions::camera), from add_camera_option; empty: default
 };
 
 /// CLI11 check that a number option is finite: CLI::Range lets NaN through (every comparison with it is false).
@@ -53,6 +54,8 @@ inline CLI::Validator number_in(double lo, double hi, const std::string& expecte
 
 /// Register the override options on a CLI11 subcommand.
 void add_render_overrides(CLI::App& cmd, RenderOverrides& o);
+/// Register --camera (render and compare: commands that load one scene).
+void add_camera_option(CLI::App& cmd, RenderOverrides& o);
 /// Apply overrides to settings; throws std::invalid_argument for bad names (listing valid ones).
 void apply_overrides(const RenderOverrides& o, RenderSettings& s);
 /// Warnings for overrides given on the command line that the chosen integrator does not use (for example

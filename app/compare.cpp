@@ -150,7 +150,7 @@ int run_compare(const CompareArgs& args) {
     if (const std::string problem = output_folder_problem(dir); !problem.empty())
       throw UsageError("compare: -o " + dir.string() + ": " + problem + " (give a folder for the outputs)");
     names = parse_integrator_list(args.integrators);
-    scene = load_scene(scene_path);
+    scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera});
     apply_overrides(args.overrides, scene->settings);
     if (args.overrides.spp) scene->settings.time_budget = 0;  // --spp asks for equal samples, over the scene's time
     scene->update_light_selector();
@@ -182,6 +182,7 @@ int run_compare(const CompareArgs& args) {
   report.spp = base.spp;
   report.time_budget = base.time_budget;
   report.settings = base;
+  report.camera = args.overrides.camera;
   report.crop = crop;
   bool created = false;  // whether this run created DIR: it is removed again if a failure leaves it empty
   int rc = 0;
@@ -199,7 +200,9 @@ int run_compare(const CompareArgs& args) {
       const uint32_t ref_spp = args.reference_spp ? *args.reference_spp
                                                   : static_cast<uint32_t>(std::clamp<uint64_t>(
                                                         16 * uint64_t(base.spp), 256, uint64_t(1) << 30));
-      const std::string hash = reference_hash(read_file_bytes(scene_path), base, ref_spp);
+      // The camera chosen in a glTF file changes the image as the file's bytes do.
+      const std::string camera = args.overrides.camera.empty() ? "" : "\n--camera " + args.overrides.camera;
+      const std::string hash = reference_hash(read_file_bytes(scene_path) + camera, base, ref_spp);
       const fs::path exr = dir / "reference.exr", meta = dir / "reference.json";
       bool cached = false;
       if (fs::exists(exr) && fs::exists(meta)) {
@@ -356,6 +359,7 @@ void register_compare_command(CLI::App& app, int& exit_code) {
                 "Also render each variant at 1, 2, 4, ... spp and plot error against time (convergence.png)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress on stderr and no table on stdout");
   add_render_overrides(*cmd, args->overrides);
+  add_camera_option(*cmd, args->overrides);
   // The shared render options, worded for compare. --integrator stays registered only to refuse it helpfully.
   cmd->get_option("--integrator")->group("");
   cmd->get_option("--spp")->description("Equal samples: samples per pixel of every variant (default: the scene's)");

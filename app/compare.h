@@ -60,6 +60,7 @@ struct CompareReport {
   uint32_t spp = 0;       ///< equal-spp mode: samples per pixel of every variant
   double time_budget = 0; ///< equal-time mode: seconds per variant
   RenderSettings settings;  ///< the variants' settings (their integrator aside), for report.json's "settings"
+  std::string camera;       ///< --camera as given (a glTF file's camera); empty: the file's default
   std::string reference_source;  ///< "rendered", "cached" or the --reference path
   std::string reference_png = "reference.png";
   uint32_t reference_spp = 0;    ///< 0 when given as a file

@@ -59,6 +59,7 @@ nlohmann::json settings_json(const CompareReport& r) {
   j["mis_heuristic"] = heuristic_name(s.mis_heuristic);
   if (has_variant(r, "mis")) j["mis_light_probability"] = s.mis_light_probability;
   if (has_variant(r, "uniform")) j["uniform_measure"] = measure_name(s.uniform_measure);
+  if (!r.camera.empty()) j["camera"] = r.camera;
   j["threads"] = s.threads;
   j["exposure"] = s.exposure;
   if (r.reference_spp) j["reference_spp"] = r.reference_spp;
@@ -71,6 +72,7 @@ nlohmann::json settings_json(const CompareReport& r) {
 std::string settings_summary(const CompareReport& r) {
   const RenderSettings& s = r.settings;
   std::ostringstream out;
+  if (!r.camera.empty()) out << "camera " << r.camera << ", ";
   out << "max depth " << s.max_depth << ", ";
   if (s.rr_depth > 0) out << "Russian roulette from depth " << s.rr_depth;
   else out << "no Russian roulette";

@@ -231,7 +231,6 @@ void set_camera(Context& ctx, GltfScene& scene, const tinygltf::Node& node, cons
     return;
   }
   if (c.type != "perspective") ctx.fail(cat + ".type", "'" + c.type + "', expected perspective or orthographic");
-  if (scene.camera) return;  // the first perspective camera wins
   const auto& p = c.perspective;
   if (!(p.yfov > 0 && p.yfov < kPi)) ctx.fail(cat + ".perspective.yfov", "expected an angle in (0, pi) radians");
   if (!(p.znear >= 0) || !std::isfinite(p.znear)) ctx.fail(cat + ".perspective.znear", "expected a number >= 0");
@@ -244,8 +243,13 @@ void set_camera(Context& ctx, GltfScene& scene, const tinygltf::Node& node, cons
   cam.fov_y_degrees = static_cast<float>(p.yfov * 180.0 / kPi);
   if (!is_finite(cam.from) || !is_finite(cam.to) || !is_finite(cam.up) || length(cam.to - cam.from) == 0)
     ctx.fail(at, "camera node transform is degenerate");
-  scene.camera = cam;
-  if (p.aspectRatio > 0) scene.camera_aspect = static_cast<float>(p.aspectRatio);
+  std::optional<float> aspect;
+  if (p.aspectRatio > 0) aspect = static_cast<float>(p.aspectRatio);
+  scene.cameras.push_back({!node.name.empty() ? node.name : c.name, at, cam, aspect});
+  if (scene.cameras.size() == 1) {  // the first perspective camera is the default
+    scene.camera = cam;
+    scene.camera_aspect = aspect;
+  }
 }
 
 }  // namespace
@@ -296,7 +300,17 @@ GltfScene load_gltf(const std::string& path, const Mat4& transform) {
     const Mat4 world = parent_world * local_transform(ctx, node, at);
     if (!world.is_finite()) ctx.fail(at, "world transform is not finite");
     if (node.skin >= 0) ctx.warn_once("skin", "skins ignored (skinned meshes are drawn in their bind pose)");
-    if (node.camera >= 0) set_camera(ctx, scene, node, world, at, orthographic);
+    if (node.camera >= 0) {
+      if (scene.cameras.empty()) {
+        set_camera(ctx, scene, node, world, at, orthographic);  // the default camera: its errors are the file's
+      } else {
+        try {  // another camera is only a choice (--camera): a broken one is left out with a warning
+          set_camera(ctx, scene, node, world, at, orthographic);
+        } catch (const SceneError& e) {
+          ctx.warn("camera skipped: " + e.location + ": " + e.detail);
+        }
+      }
+    }
     if (node.mesh >= 0) {
       const std::vector<Mat4> instances = gpu_instances(ctx, acc, node, at);
       if (instances.empty()) builder.add_mesh(node.mesh, world, at);

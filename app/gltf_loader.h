@@ -24,11 +24,20 @@ struct GltfMaterial {
   float alpha_cutoff = 0.5f;
 };
 
+/// A perspective camera node of the scene.
+struct GltfCamera {
+  std::string name;                     ///< the node's name, else its camera's, else empty
+  std::string path;                     ///< the node's glTF path ("nodes[3]")
+  Camera camera;                        ///< world space (after `transform`)
+  std::optional<float> aspect;          ///< the camera's aspectRatio when the file gives one
+};
+
 struct GltfScene {
   std::vector<TriangleMesh> meshes;     ///< world space (after `transform`); mesh.material indexes `materials`
   std::vector<GltfMaterial> materials;  ///< the file's materials in order, plus a default one when a primitive has none
-  std::optional<Camera> camera;         ///< first perspective camera node of the default scene
-  std::optional<float> camera_aspect;   ///< the camera's aspectRatio when the file gives one
+  std::vector<GltfCamera> cameras;      ///< perspective camera nodes of the default scene, depth-first in file order
+  std::optional<Camera> camera;         ///< the first of `cameras` (what a render uses unless told otherwise)
+  std::optional<float> camera_aspect;   ///< its aspectRatio when the file gives one
   Bounds3 bounds;                       ///< of all mesh vertices, world space
   std::vector<std::string> warnings;    ///< things skipped or approximated, one line each
 };

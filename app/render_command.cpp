@@ -116,7 +116,7 @@ int run_render(const RenderArgs& args) {
   }
   std::unique_ptr<Scene> scene;
   try {
-    scene = load_scene(scene_path);
+    scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera});
     apply_overrides(args.overrides, scene->settings);
     scene->update_light_selector();
   } catch (const SceneError& e) {
@@ -233,6 +233,7 @@ void register_render_command(CLI::App& app, int& exit_code) {
                   "Output image: .exr (linear, with variance channels), .png/.jpg (sRGB), .hdr "
                   "(default: <scene name>.png)");
   add_render_overrides(*cmd, args->overrides);
+  add_camera_option(*cmd, args->overrides);
   cmd->add_flag("-q,--quiet", args->quiet, "No progress or summary on stderr");
   cmd->add_flag("--aov-albedo", args->aov_albedo, "Add albedo.R/G/B channels (EXR)");
   cmd->add_flag("--aov-normal", args->aov_normal, "Add N.X/Y/Z shading-normal channels (EXR)");

@@ -1,9 +1,15 @@
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "app/cli.h"
 #include "integrators/integrator.h"
 
 namespace lumis {
+
+namespace {
+constexpr long kMaxSide = 16384;  // pixels, either side of the image
+}  // namespace
 
 void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
   cmd.add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1u, 1u << 30));
@@ -14,8 +20,10 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
   cmd.add_option("--seed", o.seed, "Random seed, in [0, 4294967295]")
       ->check(number_in(0, 4294967295.0, "a whole number in [0, 4294967295]"));
   cmd.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
-  cmd.add_option("--width", o.width, "Image width in pixels")->check(CLI::Range(1, 16384));
-  cmd.add_option("--height", o.height, "Image height in pixels")->check(CLI::Range(1, 16384));
+  cmd.add_option("--width", o.width, "Image width in pixels (alone: the height keeps the scene's aspect ratio)")
+      ->check(CLI::Range(1, int(kMaxSide)));
+  cmd.add_option("--height", o.height, "Image height in pixels (alone: the width keeps the scene's aspect ratio)")
+      ->check(CLI::Range(1, int(kMaxSide)));
   cmd.add_option("--sampler", o.sampler, "independent | stratified | sobol");
   cmd.add_option("--light-selection", o.light_selection, "uniform | power | importance");
   cmd.add_option("--mis-heuristic", o.mis_heuristic, "balance | power");
@@ -43,13 +51,24 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
       ->check(CLI::Range(-64.0f, 64.0f));
 }
 
+void add_camera_option(CLI::App& cmd, RenderOverrides& o) {
+  cmd.add_option("--camera", o.camera,
+                 "For a glTF file: the camera to render through, by number (0 = the first, the default) or by name; "
+                 "an unknown one lists those the file has");
+}
+
 void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
   if (o.spp) s.spp = *o.spp;
   if (o.seed) s.seed = *o.seed;
   if (o.max_depth) s.max_depth = *o.max_depth;
   if (o.rr_depth) s.rr_depth = *o.rr_depth;
+  // One of the two alone keeps the scene's aspect ratio (a smaller or larger render of the same picture).
+  const double aspect = double(s.width) / double(s.height);
+  const auto follow = [](double v) { return static_cast<int>(std::clamp(std::lround(v), 1L, kMaxSide)); };
   if (o.width) s.width = *o.width;
   if (o.height) s.height = *o.height;
+  if (o.width && !o.height) s.height = follow(*o.width / aspect);
+  if (o.height && !o.width) s.width = follow(*o.height * aspect);
   if (o.threads) s.threads = *o.threads;
   if (o.time) s.time_budget = *o.time;
   if (o.exposure) s.exposure = *o.exposure;

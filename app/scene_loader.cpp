@@ -10,6 +10,7 @@
 #include <iostream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "app/json_scene.h"
 #include "app/scene_error.h"
@@ -163,10 +164,26 @@ std::unique_ptr<Scene> load_json_scene(const std::string& text, const std::strin
   return scene;
 }
 
-// A bare glTF file: its first camera (or a framing one), and a white sky unless it has a light source: an emissive
+// A bare glTF file: its first camera, or the one options.camera names (or a framing one), and a white sky unless it has a light source: an emissive
 // material without an emissive texture (a lamp). Textured emission is usually a decal (a helmet's visor display),
 // too weak to light a model on its own, so such files get the sky too.
-std::unique_ptr<Scene> load_gltf_scene(const std::string& path) {
+// The camera `wanted` names (SceneLoadOptions::camera) among the file's; throws std::invalid_argument listing them.
+const GltfCamera& choose_camera(const GltfScene& gltf, const std::string& wanted, const std::string& path) {
+  const bool number = wanted.find_first_not_of("0123456789") == std::string::npos;
+  for (size_t i = 0; i < gltf.cameras.size(); ++i)
+    if (number ? wanted == std::to_string(i) : wanted == gltf.cameras[i].name) return gltf.cameras[i];
+  std::ostringstream list;
+  for (size_t i = 0; i < gltf.cameras.size(); ++i) {
+    const GltfCamera& c = gltf.cameras[i];
+    list << (i ? ", " : "") << i;
+    if (!c.name.empty()) list << " '" << c.name << "'";
+    list << " (" << c.path << ")";
+  }
+  throw std::invalid_argument("--camera: " + path + " has no camera '" + wanted + "'; " +
+                              (gltf.cameras.empty() ? "it has no perspective camera" : "its cameras: " + list.str()));
+}
+
+std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadOptions& options) {
   auto scene = std::make_unique<Scene>();
   scene->source = path;
   GltfScene gltf;
@@ -177,6 +194,11 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path) {
   }
   for (const auto& w : gltf.warnings) std::cerr << path << ": warning: " << w << "\n";
   if (gltf.meshes.empty()) throw SceneError(path, "", "scene is empty: the glTF file has no triangle meshes");
+  if (!options.camera.empty()) {
+    const GltfCamera& c = choose_camera(gltf, options.camera, path);
+    gltf.camera = c.camera;
+    gltf.camera_aspect = c.aspect;
+  }
   if (gltf.camera_aspect && *gltf.camera_aspect > 0) {
     // Keep 512 pixels across and follow the camera's aspect ratio for the height.
     scene->settings.width = kGltfImageWidth;
@@ -205,13 +227,18 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path) {
 
 }  // namespace
 
-std::unique_ptr<Scene> load_scene(const std::string& path) {
+std::unique_ptr<Scene> load_scene(const std::string& path, const SceneLoadOptions& options) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw SceneError(path, "", "is a folder, expected a scene file");
   if (!std::filesystem::is_regular_file(path, ec)) throw SceneError(path, "", "no such scene file");
   const std::string ext = lower_extension(path);
-  if (ext == ".json") return load_json_scene(read_text(path), path);
-  if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path);
+  if (ext == ".json") {
+    if (!options.camera.empty())
+      throw std::invalid_argument("--camera chooses among a glTF file's cameras; " + path +
+                                  " is a lumis scene, whose camera is its \"camera\" section");
+    return load_json_scene(read_text(path), path);
+  }
+  if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path, options);
   throw SceneError(path, "", "unknown scene file type \"" + ext + "\"; expected .json, .gltf or .glb");
 }
 

@@ -8,9 +8,18 @@
 
 namespace lumis {
 
+/// Choices made while a scene loads (the command line's, before any other override applies).
+struct SceneLoadOptions {
+  /// A glTF file's camera to render through: its position in the file's list of perspective camera nodes (0 is the
+  /// default, the first in depth-first file order) or its node's (else camera's) name. Empty: the default.
+  std::string camera;
+};
+
 /// Load a scene file: a lumis JSON scene (.json) or a glTF file (.gltf/.glb) with defaults. Returns a finalized
-/// scene. Throws SceneError naming the file, the JSON pointer (or line:column) and what was expected.
-std::unique_ptr<Scene> load_scene(const std::string& path);
+/// scene. Throws SceneError naming the file, the JSON pointer (or line:column) and what was expected, and
+/// std::invalid_argument for a SceneLoadOptions::camera the file does not have (listing those it has) or given for
+/// a JSON scene.
+std::unique_ptr<Scene> load_scene(const std::string& path, const SceneLoadOptions& options = {});
 
 /// Load a lumis JSON scene from text already in memory (as if read from `path`, which names it in messages and
 /// anchors relative paths). Throws SceneError like load_scene.

@@ -1,5 +1,6 @@
 // glTF loader on the shared sample models: triangle counts from SOURCES.md, winding against normals, transforms,
-// KHR_materials_variants, interleaved and sparse accessors, scenes, cameras and materials.
+// KHR_materials_variants, interleaved and sparse accessors, scenes, cameras (every one listed, any one chosen) and
+// materials.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 
 #include "app/gltf_loader.h"
 #include "app/scene_error.h"
+#include "app/scene_loader.h"
 #include "core/image_io.h"
 #include "tests/app/gltf_test_util.h"
 
@@ -271,6 +273,36 @@ TEST(GltfModels, ScenesModesAndCameras) {
   const GltfScene si = load_gltf(model("SimpleInstancing/glTF/SimpleInstancing.gltf"));
   EXPECT_EQ(si.meshes.size(), 125u);
   EXPECT_GT(si.bounds.diagonal().x, 10.0f);
+}
+
+TEST(GltfModels, EveryPerspectiveCameraIsListedAndCanBeChosen) {
+  REQUIRE_ASSETS();
+  // ToyCar: eight perspective cameras, listed in depth-first file order; the first is the default.
+  const std::string path = model("ToyCar/glTF/ToyCar.gltf");
+  const GltfScene car = load_gltf(path);
+  ASSERT_EQ(car.cameras.size(), 8u);
+  EXPECT_EQ(car.cameras[0].name, "Camera001");
+  EXPECT_EQ(car.cameras[0].path, "nodes[3]");
+  EXPECT_EQ(car.cameras[7].name, "Camera008");
+  ASSERT_TRUE(car.camera.has_value());
+  expect_vec(car.camera->from, car.cameras[0].camera.from);
+  // load_scene renders through the one chosen, by number or by name, the same camera either way.
+  const std::unique_ptr<Scene> by_number = load_scene(path, SceneLoadOptions{"5"});
+  const std::unique_ptr<Scene> by_name = load_scene(path, SceneLoadOptions{"Camera006"});
+  expect_vec(by_number->camera.from, car.cameras[5].camera.from);
+  expect_vec(by_number->camera.to, car.cameras[5].camera.to);
+  expect_vec(by_name->camera.from, car.cameras[5].camera.from);
+  EXPECT_GT(length(car.cameras[5].camera.from - car.cameras[0].camera.from), 1e-3f);
+  // An unknown camera is a usage error that lists the file's cameras; a JSON scene has no glTF cameras to choose.
+  try {
+    load_scene(path, SceneLoadOptions{"8"});
+    FAIL() << "camera 8 of 8 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("0 'Camera001' (nodes[3])"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("7 'Camera008'"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(load_scene(std::string(LUMIS_SOURCE_DIR) + "/scenes/cornell-sphere.json", SceneLoadOptions{"0"}),
+               std::invalid_argument);
 }
 
 TEST(GltfModels, Materials) {

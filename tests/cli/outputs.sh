@@ -2,8 +2,8 @@
 # Where an output cannot be written, lumis says so before doing any work (render, diff's heatmap, bench's JSON and
 # scene list), naming the path given and not a temporary one; options that cannot take effect are refused (AOVs in
 # a PNG) or named in a warning (--mis-light-probability without the mis integrator); command-line errors start
-# with "lumis: " and give the accepted range; --uniform-measure takes the scene file's spelling too; diff compares
-# grey images.
+# with "lumis: " and give the accepted range; --uniform-measure takes the scene file's spelling too; --width or
+# --height alone keeps the aspect ratio; --camera is refused for a JSON scene; diff compares grey images.
 # Usage: outputs.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: outputs.sh path/to/lumis}
@@ -44,6 +44,20 @@ has "--uniform-measure only affects --integrator uniform; ignored for bsdf"
 has "--light-selection only affects light, mis and nee_mis; ignored for bsdf"
 expect 0 "$LUMIS" "${R[@]}" --integrator mis --mis-light-probability 0.3 -o "$T/w.png"
 [ ! -s "$T/err" ] || fail "a warning for options that apply: $(cat "$T/err")"
+
+# --width or --height alone keeps the scene's aspect ratio (cornell-sphere is 512 x 512).
+if command -v iinfo >/dev/null; then
+  expect 0 "$LUMIS" render "$SCENE" --width 24 --spp 1 -q -o "$T/aspect.png"
+  iinfo "$T/aspect.png" | grep -Eq " 24 x +24," || fail "--width 24 alone: $(iinfo "$T/aspect.png")"
+  expect 0 "$LUMIS" render "$SCENE" --height 20 --spp 1 -q -o "$T/aspect.png"
+  iinfo "$T/aspect.png" | grep -Eq " 20 x +20," || fail "--height 20 alone: $(iinfo "$T/aspect.png")"
+  expect 0 "$LUMIS" render "$SCENE" --width 24 --height 8 --spp 1 -q -o "$T/aspect.png"
+  iinfo "$T/aspect.png" | grep -Eq " 24 x +8," || fail "--width 24 --height 8: $(iinfo "$T/aspect.png")"
+fi
+
+# --camera chooses among a glTF file's cameras; an unknown one lists them, and a JSON scene has none to choose.
+expect 2 "$LUMIS" "${R[@]}" --camera 1 -o "$T/c.png"
+has "--camera chooses among a glTF file's cameras"
 
 # The scene file's spelling of a measure works on the command line too.
 expect 0 "$LUMIS" "${R[@]}" --integrator uniform --uniform-measure solid_angle -o "$T/w.png"
