@@ -15,18 +15,29 @@ attr() { iinfo -v "$1" | sed -n "s/^ *$2: \"\(.*\)\"$/\1/p"; }
 # summary_spp: the sample count the render's summary line reports.
 summary_spp() { sed -n 's/.*, \([0-9]*\) spp in .*/\1/p' "$T/err"; }
 
-# --- Ctrl-C: far more samples than can finish. A job started with & ignores SIGINT until lumis installs its
-# handler (after loading the scene), so the signal is repeated until lumis exits.
-mkdir "$T/int"
-"$LUMIS" render "$SCENE" --width 64 --height 64 --spp 1000000 --threads 2 -o "$T/int/out.exr" 2>"$T/err" &
-pid=$!
-sleep 1
-for _ in $(seq 1 60); do
-  kill -INT "$pid" 2>/dev/null || break
-  sleep 0.5
-done
-wait "$pid"
-code=$?
+# stopped_render SIGNAL DIR: a render of far more samples than can finish, into DIR/out.exr, sent SIGNAL every half
+# second until it exits; $code is its exit status. lumis starts with SIGNAL ignored, as a job started with & ignores
+# SIGINT, so the signals sent while the scene loads (before lumis installs its handler) are lost: a stop signal
+# then would end it at once, with nothing rendered. After 30 s of signals it is killed: a failure, not a wait of
+# hours.
+stopped_render() {
+  local sig=$1 dir=$2
+  mkdir "$dir"
+  (trap '' "$sig" && exec "$LUMIS" render "$SCENE" --width 64 --height 64 --spp 1000000 --threads 2 \
+    -o "$dir/out.exr") 2>"$T/err" &
+  local pid=$!
+  sleep 1
+  for _ in $(seq 1 60); do
+    kill -"$sig" "$pid" 2>/dev/null || break
+    sleep 0.5
+  done
+  kill -KILL "$pid" 2>/dev/null
+  wait "$pid"
+  code=$?
+}
+
+# --- Ctrl-C (SIGINT).
+stopped_render INT "$T/int"
 [ "$code" = 130 ] || fail "interrupted render exited $code, expected 130"
 [ -s "$T/int/out.exr" ] || fail "no image written after SIGINT"
 [ "$(ls -A "$T/int")" = "out.exr" ] || fail "files left beside the image: $(ls -A "$T/int")"
@@ -41,21 +52,8 @@ spp=$(attr "$T/int/out.exr" lumis:spp)
 grep -q "(interrupted)" "$T/err" || fail "summary does not say interrupted"
 
 # --- SIGTERM (what batch schedulers and `kill` send) stops the render the same way: the image so far is written
-# and the exit code is 143 (128 + 15), as a shell reports a terminated command. A SIGTERM while the scene loads ends
-# lumis at once (nothing is rendered yet), so lumis is started with SIGTERM ignored, as the job above starts with
-# SIGINT ignored: the signals sent before lumis installs its handler are lost, the first one after it stops it.
-mkdir "$T/term"
-(trap '' TERM && exec "$LUMIS" render "$SCENE" --width 64 --height 64 --spp 1000000 --threads 2 -o "$T/term/out.exr") \
-  2>"$T/err" &
-pid=$!
-sleep 1
-for _ in $(seq 1 60); do
-  kill -TERM "$pid" 2>/dev/null || break
-  sleep 0.5
-done
-kill -KILL "$pid" 2>/dev/null  # still running after 30 s of SIGTERMs: a failure, not a wait of hours
-wait "$pid"
-code=$?
+# and the exit code is 143 (128 + 15), as a shell reports a terminated command.
+stopped_render TERM "$T/term"
 [ "$code" = 143 ] || fail "terminated render exited $code, expected 143"
 [ "$(ls -A "$T/term")" = "out.exr" ] || fail "after SIGTERM the folder holds: $(ls -A "$T/term")"
 [ "$(attr "$T/term/out.exr" lumis:stopped)" = interrupted ] || fail "lumis:stopped is not 'interrupted' after SIGTERM"
