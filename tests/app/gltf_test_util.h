@@ -1,5 +1,5 @@
-// Helpers shared by the glTF loader tests (test_gltf_models.cpp, test_gltf_files.cpp): where the shared sample
-// models are, triangle and dropped-triangle counts of a loaded file, and a vector comparison.
+// Helpers shared by the glTF loader tests (test_gltf_models.cpp, test_gltf_files.cpp, test_gltf_errors.cpp): where
+// the shared sample models are, triangle and dropped-triangle counts of a loaded file, and a vector comparison.
 #pragma once
 
 #include <gtest/gtest.h>
