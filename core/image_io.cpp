@@ -20,6 +20,24 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& reason) { throw ImageError(path + ": " + reason); }
 
+/// A reader's message, first line only: OpenImageIO stacks the same failure as seen by each layer (libpng's,
+/// then its own summary) on further lines.
+std::string first_line(const std::string& message) {
+  const size_t start = message.find_first_not_of("\n");
+  if (start == std::string::npos) return {};
+  return message.substr(start, message.find('\n', start) - start);
+}
+
+/// Reads the whole image as `type` into `data`, or fails. A read that succeeds but left a message behind is a
+/// damaged file whose missing part the decoder filled in (libjpeg's "Premature end of JPEG file" warning): an error.
+void read_pixels(OIIO::ImageInput& in, const std::string& name, OIIO::TypeDesc type, void* data) {
+  const int channels = in.spec().nchannels;
+  const bool ok = in.read_image(0, 0, 0, channels, type, data);
+  const std::string why = first_line(in.geterror());
+  if (!ok) fail(name, why.empty() ? "unreadable image data" : why);
+  if (!why.empty()) fail(name, why);
+}
+
 bool is_alpha_name(const std::string& name) { return name == "A" || name == "a" || name == "alpha" || name == "Alpha"; }
 
 // Display formats hold encoded values; HDR formats hold linear radiance. The extension decides which.
@@ -126,7 +144,7 @@ Image decode(OIIO::ImageInput& in, const std::string& name, bool srgb_to_linear_
   if (eight_bit) {
     // The common texture case, through lookup tables: several times faster than converting floats afterwards.
     std::vector<unsigned char> raw(img.data.size());
-    if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, raw.data())) fail(name, in.geterror());
+    read_pixels(in, name, OIIO::TypeDesc::UINT8, raw.data());
     float linear[256], decoded[256];
     for (int i = 0; i < 256; ++i) {
       linear[i] = i / 255.0f;
@@ -136,7 +154,7 @@ Image decode(OIIO::ImageInput& in, const std::string& name, bool srgb_to_linear_
     for (int c = 0; c < img.channels; ++c) lut[c] = decode_channel(c) ? decoded : linear;
     for (size_t i = 0; i < raw.size(); ++i) img.data[i] = lut[i % img.channels][raw[i]];
   } else {
-    if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.data.data())) fail(name, in.geterror());
+    read_pixels(in, name, OIIO::TypeDesc::FLOAT, img.data.data());
     // Integer-encoded files (16 bit here) carry the sRGB curve; float files are already linear.
     for (int c = 0; c < img.channels; ++c)
       if (decode_channel(c))
@@ -163,7 +181,7 @@ Image read_image(const std::string& path, bool srgb_to_linear_colour) {
   const OIIO::ImageSpec config = read_config();
   auto in = OIIO::ImageInput::open(path, &config);
   if (!in) {
-    std::string why = OIIO::geterror();
+    const std::string why = first_line(OIIO::geterror());
     fail(path, why.empty() ? "unreadable or unsupported image format" : why);
   }
   return decode(*in, path, srgb_to_linear_colour);
@@ -180,7 +198,7 @@ Image read_image_memory(const unsigned char* bytes, size_t size, const std::stri
   config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
   OIIO::ImageSpec spec;
   if (!in->open(name, spec, config)) {
-    std::string why = in->geterror();
+    const std::string why = first_line(in->geterror());
     fail(name, why.empty() ? "unreadable " + format + " data" : why);
   }
   return decode(*in, name, srgb_to_linear_colour);

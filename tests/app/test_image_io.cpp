@@ -247,5 +247,32 @@ TEST_F(ImageIoTest, ErrorsAndAtomicWrites) {
     std::ofstream(unknown) << "plain text";
     EXPECT_THROW(read_image(unknown), ImageError);
   }
+  {  // TruncatedFilesAreErrors: libjpeg fills a cut-off JPEG with grey and only warns; that warning is an error,
+     // from a file and from memory (glTF's embedded images), in one line (no stacked OpenImageIO messages).
+    reset();
+    for (const char* ext : {".jpg", ".png"}) {
+      const std::string whole = file(std::string("whole") + ext), cut = file(std::string("cut") + ext);
+      write_image(whole, gradient(64, 64, {"R", "G", "B"}));
+      std::ifstream in(whole, std::ios::binary);
+      const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      ASSERT_GT(bytes.size(), 400u);
+      const std::string head = bytes.substr(0, bytes.size() * 2 / 3);
+      std::ofstream(cut, std::ios::binary) << head;
+      EXPECT_EQ(read_image(whole).width, 64);  // the whole file reads, with no message left behind
+      for (int memory = 0; memory < 2; ++memory) {
+        try {
+          if (memory)
+            read_image_memory(reinterpret_cast<const unsigned char*>(head.data()), head.size(), ext + 1, "embedded");
+          else
+            read_image(cut);
+          FAIL() << "expected ImageError for a truncated " << ext << (memory ? " in memory" : " file");
+        } catch (const ImageError& e) {
+          const std::string what = e.what();
+          EXPECT_EQ(what.rfind((memory ? std::string("embedded") : cut) + ": ", 0), 0u) << what;
+          EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+        }
+      }
+    }
+  }
 }
 
