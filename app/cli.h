@@ -58,9 +58,9 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o);
 void add_camera_option(CLI::App& cmd, RenderOverrides& o);
 /// Apply overrides to settings; throws std::invalid_argument for bad names (listing valid ones).
 void apply_overrides(const RenderOverrides& o, RenderSettings& s);
-/// Warnings for overrides given on the command line that the chosen integrator does not use (for example
+/// Warnings for overrides given on the command line that none of the integrators uses (for example
 /// --mis-light-probability with nee_mis), one sentence each.
-std::vector<std::string> unused_overrides(const RenderOverrides& o, const RenderSettings& s);
+std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::vector<std::string>& integrators);
 
 /// The built-in default scene (scenes/cornell-sphere.json), found next to the sources or the executable.
 std::string default_scene_path();

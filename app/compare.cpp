@@ -168,6 +168,8 @@ int run_compare(const CompareArgs& args) {
     std::cerr << "lumis compare: " << scene_path << ": " << e.what() << "\n";
     return 1;
   }
+  for (const std::string& w : unused_overrides(args.overrides, names))
+    std::cerr << "lumis compare: warning: " << w << "\n";
   const RenderSettings base = scene->settings;
   const bool equal_time = base.time_budget > 0;
   auto log = [&](const std::string& line) {

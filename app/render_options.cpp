@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
 
 #include "app/cli.h"
@@ -107,17 +108,23 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
   }
 }
 
-std::vector<std::string> unused_overrides(const RenderOverrides& o, const RenderSettings& s) {
+std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::vector<std::string>& integrators) {
   std::vector<std::string> out;
-  const std::string& i = s.integrator;
-  const auto unused = [&](bool given, const char* option, const char* applies_to) {
-    if (given) out.push_back(std::string(option) + " only affects " + applies_to + "; ignored for " + i);
+  std::string list;
+  for (const std::string& i : integrators) list += (list.empty() ? "" : ", ") + i;
+  // An option is reported when it is given and none of the integrators uses it.
+  const auto unused = [&](bool given, const char* option, const char* applies_to,
+                          std::initializer_list<const char*> users) {
+    if (!given) return;
+    for (const std::string& i : integrators)
+      for (const char* u : users)
+        if (i == u) return;
+    out.push_back(std::string(option) + " only affects " + applies_to + "; ignored for " + list);
   };
-  unused(o.mis_light_probability.has_value() && i != "mis", "--mis-light-probability", "--integrator mis");
-  unused(o.uniform_measure.has_value() && i != "uniform", "--uniform-measure", "--integrator uniform");
-  unused(o.mis_heuristic.has_value() && i != "mis" && i != "nee_mis", "--mis-heuristic", "mis and nee_mis");
-  unused(o.light_selection.has_value() && (i == "uniform" || i == "bsdf"), "--light-selection",
-         "light, mis and nee_mis");
+  unused(o.mis_light_probability.has_value(), "--mis-light-probability", "--integrator mis", {"mis"});
+  unused(o.uniform_measure.has_value(), "--uniform-measure", "--integrator uniform", {"uniform"});
+  unused(o.mis_heuristic.has_value(), "--mis-heuristic", "mis and nee_mis", {"mis", "nee_mis"});
+  unused(o.light_selection.has_value(), "--light-selection", "light, mis and nee_mis", {"light", "mis", "nee_mis"});
   return out;
 }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end test of `lumis compare` on a 32x32 render of the built-in scene: the files it writes, the report
 # contents, reference caching, equal-time mode, usage errors, and (when /usr/bin/chromium exists) that index.html's
-# script runs in headless Chromium. Usage: compare.sh path/to/lumis   (exit 77 = skipped)
+# script runs in headless Chromium; options no variant uses are warned about.
+# Usage: compare.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: compare.sh path/to/lumis}
 source "$(dirname "$0")/common.bash"
@@ -44,11 +45,14 @@ grep -q '"source": "cached"' "$D/report.json" || fail "reference not reused"
 expect 0 "$LUMIS" compare "$SCENE" "${SMALL[@]}" --spp 4 --integrators mis --seed 3 -o "$D" -q
 grep -q '"source": "rendered"' "$D/report.json" || fail "reference reused after the seed changed"
 
-# Equal time with a given reference file.
+# Equal time with a given reference file; an option that neither variant uses is named in a warning (also with -q).
 expect 0 "$LUMIS" compare "$SCENE" --width 32 --height 32 --max-depth 2 --time 0.05 --integrators bsdf,light \
-  --reference "$D/reference.exr" -o "$T/time" -q
+  --reference "$D/reference.exr" --mis-light-probability 0.3 --light-selection power -o "$T/time" -q
 grep -q '"mode": "equal-time"' "$T/time/report.json" || fail "equal-time mode"
 grep -q "\"source\": \"$D/reference.exr\"" "$T/time/report.json" || fail "given reference not recorded"
+grep -qF "warning: --mis-light-probability only affects --integrator mis; ignored for bsdf, light" "$T/err" ||
+  fail "no warning for an option no variant uses: $(cat "$T/err")"
+grep -q "light-selection" "$T/err" && fail "a warning for an option the light variant uses: $(cat "$T/err")"
 
 # Usage errors exit 2 and name the problem.
 expect 2 "$LUMIS" compare "$SCENE" --integrators mis,photon -o "$T/bad"
