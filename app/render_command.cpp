@@ -130,7 +130,8 @@ int run_render(const RenderArgs& args) {
     return 1;
   }
   RenderSettings& s = scene->settings;
-  for (const std::string& w : unused_overrides(args.overrides, {s.integrator})) std::cerr << "lumis: warning: " << w << "\n";
+  for (const std::string& w : unused_overrides(args.overrides, {s.integrator}))
+    std::cerr << "lumis: warning: " << w << "\n";
   std::unique_ptr<Integrator> integrator;
   try {
     integrator = make_integrator(s);

@@ -48,7 +48,8 @@ std::string tag(float v) { return std::to_string(static_cast<int>(std::lround(v 
 std::vector<BsdfCase> bsdf_cases() {
   std::vector<BsdfCase> v;
   const double thetas[] = {0, 15, 45, 80};  // 0: normal incidence, a sharp lobe against the pole
-  for (const double t : thetas) v.push_back({"diffuse_theta" + tag(t / 100), DiffuseBsdf{Color(0.8f, 0.5f, 0.2f)}, 0, 1, t});
+  for (const double t : thetas)
+    v.push_back({"diffuse_theta" + tag(t / 100), DiffuseBsdf{Color(0.8f, 0.5f, 0.2f)}, 0, 1, t});
   const float roughnesses[] = {0.0316228f, 0.05f, 0.2f, 0.5f, 1.0f};  // 0.0316: alpha = kMinGgxAlpha
   for (const float r : roughnesses)
     for (const double t : thetas)
@@ -79,8 +80,9 @@ std::vector<BsdfCase> bsdf_cases() {
 // ---- Chi-square of sample() against pdf() ----
 //
 // Family: 4 diffuse + 20 GGX (5 roughness x 4 angles) + 60 PBR (3 materials x 5 roughness x 4 angles) = 84 tests
-// at Sidak-corrected alpha 0.01: 1% false-failure probability for the whole family (fixed seeds: deterministic). 200,000 samples each. Lambert uses core/chi2.h's 40 x 80 sphere grid; the others use
-// the 32 x 64 upper-hemisphere grid of tests/unit/lobe_chi2.h (the horizon is a cell edge), warped around the
+// at Sidak-corrected alpha 0.01: 1% false-failure probability for the whole family (fixed seeds: deterministic).
+// 200,000 samples each. Lambert uses core/chi2.h's 40 x 80 sphere grid; the others use the 32 x 64
+// upper-hemisphere grid of tests/unit/lobe_chi2.h (the horizon is a cell edge), warped around the
 // mirror direction when the specular lobe is sharp (alpha < 0.2). Failed samples (wi below the horizon) form
 // their own cell, expected N (1 - integral of the pdf).
 constexpr int kChi2Family = 84;
