@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <system_error>
 
 #include "core/file_ext.h"
+#include "core/png_chunks.h"
 
 namespace lumis {
 
@@ -172,12 +174,25 @@ OIIO::ImageSpec read_config() {
   return config;
 }
 
+/// Fails when the file is a PNG cut short (see core/png_chunks.h); other files pass untouched.
+void check_png_chunks(const std::string& path) {
+  std::ifstream file(path, std::ios::binary | std::ios::ate);
+  if (!file) return;  // OpenImageIO reports an unreadable file
+  const auto size = static_cast<size_t>(file.tellg());
+  const std::string why = png_structure_error(size, [&file](size_t offset, unsigned char* out, size_t n) {
+    file.seekg(static_cast<std::streamoff>(offset));
+    return static_cast<bool>(file.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(n)));
+  });
+  if (!why.empty()) fail(path, why);
+}
+
 }  // namespace
 
 Image read_image(const std::string& path, bool srgb_to_linear_colour) {
   std::error_code ec;
   if (!fs::exists(path, ec)) fail(path, "no such file");
   if (fs::is_directory(path, ec)) fail(path, "is a directory, not an image");
+  check_png_chunks(path);
   const OIIO::ImageSpec config = read_config();
   auto in = OIIO::ImageInput::open(path, &config);
   if (!in) {
@@ -189,6 +204,7 @@ Image read_image(const std::string& path, bool srgb_to_linear_colour) {
 
 Image read_image_memory(const unsigned char* bytes, size_t size, const std::string& format, const std::string& name,
                         bool srgb_to_linear_colour) {
+  if (const std::string why = png_structure_error(bytes, size); !why.empty()) fail(name, why);
   // The reader takes its bytes from the proxy named in the open hints (declared first: it outlives the reader).
   OIIO::Filesystem::IOMemReader memory(bytes, size);
   auto in = OIIO::ImageInput::create(format);
