@@ -16,7 +16,9 @@ std::string JsonSceneBuilder::resolve_path(const JsonNode& node) const {
   if (p.is_relative()) p = folder_ / p;
   std::error_code ec;
   if (std::filesystem::is_directory(p, ec)) node.fail("is a folder, expected a file: " + p.string());
-  if (!std::filesystem::is_regular_file(p, ec)) node.fail("file not found: " + p.string());
+  if (!std::filesystem::exists(p, ec)) node.fail("file not found: " + p.string());
+  if (!std::filesystem::is_regular_file(p, ec))
+    node.fail("is not a regular file (a pipe, device or socket): " + p.string());
   return p.string();
 }
 

@@ -230,7 +230,9 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadO
 std::unique_ptr<Scene> load_scene(const std::string& path, const SceneLoadOptions& options) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw SceneError(path, "", "is a folder, expected a scene file");
-  if (!std::filesystem::is_regular_file(path, ec)) throw SceneError(path, "", "no such scene file");
+  if (!std::filesystem::exists(path, ec)) throw SceneError(path, "", "no such scene file");
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw SceneError(path, "", "is not a regular file (a pipe, device or socket), expected a scene file");
   const std::string ext = lower_extension(path);
   if (ext == ".json") {
     if (!options.camera.empty())

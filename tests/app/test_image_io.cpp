@@ -1,5 +1,6 @@
 // Image I/O through OpenImageIO: round trips, the sRGB curve, errors, and atomic writes.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -243,6 +244,17 @@ TEST_F(ImageIoTest, ErrorsAndAtomicWrites) {
     } catch (const ImageError& e) {
       EXPECT_EQ(std::string(e.what()).rfind(junk + ": ", 0), 0u) << e.what();
     }
+    // A pipe or a device would block or stream forever: refused by name, before any decoder opens it.
+    const std::string pipe = file("pipe.png");
+    ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+    for (const std::string& path : {pipe, std::string("/dev/zero")}) {
+      try {
+        read_image(path);
+        ADD_FAILURE() << "expected ImageError for " << path;
+      } catch (const ImageError& e) {
+        EXPECT_EQ(std::string(e.what()), path + ": is not a regular file (a pipe, device or socket), not an image");
+      }
+    }
     const std::string unknown = file("data.xyz");
     std::ofstream(unknown) << "plain text";
     EXPECT_THROW(read_image(unknown), ImageError);
@@ -282,7 +294,9 @@ TEST_F(ImageIoTest, ErrorsAndAtomicWrites) {
         }
       }
       const std::string printed = testing::internal::GetCapturedStderr();
-      if (png) EXPECT_EQ(printed, "") << "libpng saw a truncated PNG";
+      if (png) {
+        EXPECT_EQ(printed, "") << "libpng saw a truncated PNG";
+      }
     }
   }
 }

@@ -1,6 +1,7 @@
 // The lumis JSON scene loader on bad input: each kind fails with the exact location (JSON pointer or line:column)
 // and the telling part of the message (scenes that load: test_scene_loader.cpp).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <limits>
@@ -318,6 +319,24 @@ TEST(SceneLoaderErrors, MissingSceneFile) {
     EXPECT_EQ(e.location, "");
     EXPECT_EQ(e.detail, "no such scene file");
   }
+}
+
+// A pipe or a device would block or stream forever: refused before anything reads it, as a scene and as a texture.
+TEST(SceneLoaderErrors, PipesAndDevicesAreRefused) {
+  const std::string pipe = (test_dir() / "pipe.json").string();
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  for (const std::string& path : {pipe, std::string("/dev/zero")}) {
+    try {
+      load_scene(path);
+      ADD_FAILURE() << "no error for " << path;
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.detail, "is not a regular file (a pipe, device or socket), expected a scene file") << path;
+    }
+  }
+  EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "diffuse", "texture": "pipe.json"})"),
+                     "/materials/m/texture", "is not a regular file (a pipe, device or socket)");
+  EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "diffuse", "texture": "/dev/zero"})"),
+                     "/materials/m/texture", "is not a regular file (a pipe, device or socket)");
 }
 
 TEST(SceneLoaderErrors, UnknownFileExtension) {

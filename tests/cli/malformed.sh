@@ -57,11 +57,13 @@ for name in "${cases[@]}"; do
   run_case "$name" "$input" "${want:-1}" "$substring" $args
 done
 
-# Cases that cannot be committed as files: a missing scene, a directory, an unreadable file.
+# Cases that cannot be committed as files: a missing scene, a directory, a pipe, an unreadable file.
 if [ $# -eq 0 ]; then
   run_case missing_scene "$T/no-such-scene.json" 1 "no-such-scene.json"
   mkdir -p "$T/folder.json"
   run_case directory_scene "$T/folder.json" 1 "folder.json: is a folder, expected a scene file"
+  mkfifo "$T/pipe.json"
+  run_case pipe_scene "$T/pipe.json" 1 "pipe.json: is not a regular file (a pipe, device or socket)"
   cp "$DIR/json_empty_object.json" "$T/unreadable.json"
   chmod 000 "$T/unreadable.json"
   if ! cat "$T/unreadable.json" >/dev/null 2>&1; then   # root reads anything: skip there
