@@ -26,6 +26,13 @@ bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::stri
   return true;
 }
 
+/// tinygltf's file-exists test, narrowed to regular files: a buffer or image URI naming a pipe or a device
+/// (/dev/zero) would block or stream forever when read, so it is reported as missing instead.
+bool regular_file_exists(const std::string& path, void*) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec);
+}
+
 /// asset.version and asset.minVersion: lumis reads glTF 2.0 (a later 2.x file must read as 2.0).
 void check_version(const Context& ctx, const std::string& version, const std::string& min_version) {
   if (version.rfind("2.", 0) != 0)
@@ -83,6 +90,8 @@ void parse_file(Context& ctx, const std::string& path) {
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&keep_image_bytes, nullptr);
+  loader.SetFsCallbacks({&regular_file_exists, &tinygltf::ExpandFilePath, &tinygltf::ReadWholeFile,
+                         &tinygltf::WriteWholeFile, nullptr});
   std::string err, warn;
   const bool ok = binary ? loader.LoadBinaryFromFile(&ctx.model, &err, &warn, path)
                          : loader.LoadASCIIFromFile(&ctx.model, &err, &warn, path);

@@ -1,6 +1,7 @@
 // glTF loader errors on small synthetic files: component types as core glTF 2.0 allows them, and every error path
 // named by its glTF path (accessors, buffers and their files, versions, nodes, images).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <string>
@@ -143,6 +144,13 @@ TEST_F(GltfFiles, ErrorsNameTheGltfPath) {
   write("short.bin", std::string(t.bin.bytes.begin(), t.bin.bytes.begin() + 40));
   expect_error(write("short.gltf", tri(length + R"(,"uri":"short.bin"})")),
                {"short.gltf:buffers[0].byteLength: is 78, but the file", "has 40 bytes"});
+  // A buffer or image that is a pipe would block tinygltf's read forever: reported as missing instead.
+  ASSERT_EQ(::mkfifo((dir_ / "pipe.bin").c_str(), 0600), 0);
+  expect_error(write("pipe.gltf", tri(length + R"(,"uri":"pipe.bin"})")), {"pipe.gltf:buffers[0].uri", "pipe.bin"});
+  ASSERT_EQ(::mkfifo((dir_ / "pipe.png").c_str(), 0600), 0);
+  expect_error(simple("pipeimg.gltf", t.bin, t.views, t.accessors, prim, R"({"mesh":0})",
+                      R"(,"images":[{"uri":"pipe.png"}])" + mat),
+               {"pipeimg.gltf:images[0]", "pipe.png"});
   // tinygltf falls back to the working folder; lumis looks only where the file says.
   write("cwd.bin", std::string(t.bin.bytes.begin(), t.bin.bytes.end()));
   fs::create_directories(dir_ / "sub");
