@@ -6,10 +6,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
 #include "app/gltf_internal.h"
+#include "app/json_depth.h"
 
 namespace lumis {
 
@@ -55,18 +58,37 @@ void check_buffer_file(const Context& ctx, size_t i, const std::string& uri, uin
                                      std::to_string(size) + " bytes");
 }
 
+/// The JSON text of a .gltf, or the JSON chunk of a .glb (12-byte header, chunk length, "JSON", the text, read
+/// without the binary chunk); nothing when a .glb's header is too damaged to find it (tinygltf then says why).
+std::optional<std::string> json_text(const std::string& path, bool binary) {
+  std::ifstream in(path, std::ios::binary);
+  if (!binary) return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  char head[20] = {};
+  if (!in.read(head, sizeof(head)) || std::string_view(head + 16, 4) != "JSON") return std::nullopt;
+  uint32_t length = 0;
+  std::memcpy(&length, head + 12, 4);
+  std::error_code ec;
+  const uint64_t size = fs::file_size(path, ec);
+  if (ec || length > size - sizeof(head)) return std::nullopt;
+  std::string text(length, '\0');
+  if (!in.read(text.data(), length)) return std::nullopt;
+  return text;
+}
+
+/// tinygltf converts the document to its own values recursively: refuse nesting that would overflow the stack.
+void check_depth(const Context& ctx, const std::string& text, bool binary) {
+  if (const auto at = json_too_deep(text))
+    ctx.fail("", "the JSON" + std::string(binary ? " chunk" : "") + " nests deeper than " +
+                     std::to_string(kMaxJsonDepth) + " levels (at line:column " + json_line_column(text, *at) +
+                     "); lumis reads at most " + std::to_string(kMaxJsonDepth));
+}
+
 /// Where tinygltf rejects a file, name the cause in glTF terms when it is one of the likely ones above: a version
 /// other than 2.0 (the structure of 1.0 differs) or a missing or short buffer file. Returns when it is none of them.
 void explain_rejection(const Context& ctx, const std::string& path, bool binary) {
-  std::ifstream in(path, std::ios::binary);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (binary) {  // the JSON chunk: 12-byte header, chunk length, "JSON", the text
-    uint32_t length = 0;
-    if (text.size() < 20 || text.compare(16, 4, "JSON") != 0) return;
-    std::memcpy(&length, &text[12], 4);
-    if (length > text.size() - 20) return;
-    text = text.substr(20, length);
-  }
+  const std::optional<std::string> json = json_text(path, binary);
+  if (!json) return;
+  const std::string& text = *json;
   const auto doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (!doc.is_object()) return;
   if (auto a = doc.find("asset"); a != doc.end() && a->is_object() && a->contains("version") &&
@@ -87,6 +109,7 @@ void parse_file(Context& ctx, const std::string& path) {
   char magic[4] = {};
   std::ifstream(path, std::ios::binary).read(magic, 4);
   const bool binary = std::string(magic, 4) == "glTF";
+  if (const std::optional<std::string> text = json_text(path, binary)) check_depth(ctx, *text, binary);
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&keep_image_bytes, nullptr);

@@ -62,6 +62,28 @@ TEST_F(GltfFiles, ComponentTypesAreThoseOfCoreGltf) {
                {"accessors[3].componentType", "EXT_mesh_gpu_instancing.attributes.TRANSLATION"});
 }
 
+// tinygltf copies the document into its own values recursively: 20,000 levels of "extras" overflowed the stack
+// (a crash, exit 139). Nesting beyond 512 levels is refused with its line and column, in a .gltf and in a .glb's
+// JSON chunk; brackets inside strings do not count, and 512 levels still load.
+TEST_F(GltfFiles, DeeplyNestedJsonIsRefusedNotACrash) {
+  Triangle t;
+  auto with_extras = [&](const std::string& name, const std::string& extras) {
+    return simple(name, t.bin, t.views, t.accessors, Triangle::prim, R"({"mesh":0})", R"(,"extras":)" + extras);
+  };
+  auto nested = [](size_t levels) { return std::string(levels, '[') + std::string(levels, ']'); };
+  const std::string deep = with_extras("deep.gltf", nested(20000));
+  // The first '[' of the extras opens level 2 (the document's '{' is level 1): level 513 is 511 brackets further.
+  std::ifstream in(deep, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string column = std::to_string(text.find('[', text.find("\"extras\"")) + 511 + 1);
+  expect_error(deep, {"deep.gltf: the JSON nests deeper than 512 levels (at line:column 1:" + column +
+                      "); lumis reads at most 512"});
+  expect_error(write("deep.glb", make_glb(R"({"asset":{"version":"2.0"},"extras":)" + nested(20000) + "}", {})),
+               {"deep.glb: the JSON chunk nests deeper than 512 levels"});
+  EXPECT_EQ(load_gltf(with_extras("deep511.gltf", nested(511))).meshes.size(), 1u);  // 512 levels in all
+  EXPECT_EQ(load_gltf(with_extras("quoted.gltf", "\"" + std::string(20000, '[') + "\\\"{\"")).meshes.size(), 1u);
+}
+
 TEST_F(GltfFiles, ErrorsNameTheGltfPath) {
   Triangle t;
   // Node hierarchies that are not trees.
