@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <new>
 #include <filesystem>
 #include <fstream>
 #include <system_error>
@@ -126,11 +128,9 @@ float srgb_to_linear(float v) {
 
 namespace {
 
-/// Every channel of an opened image as float (see read_image); `name` starts the messages.
-Image decode(OIIO::ImageInput& in, const std::string& name, bool srgb_to_linear_colour) {
+/// The pixels of an opened, checked image as float (see decode).
+Image decode_pixels(OIIO::ImageInput& in, const std::string& name, bool srgb_to_linear_colour) {
   const OIIO::ImageSpec& spec = in.spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail(name, "image has no pixels");
-  if (spec.depth > 1) fail(name, "volume images are not supported");
 
   std::vector<std::string> names = spec.channelnames;
   names.resize(spec.nchannels);
@@ -167,6 +167,36 @@ Image decode(OIIO::ImageInput& in, const std::string& name, bool srgb_to_linear_
   return img;
 }
 
+/// "4096x2048 with 3 channels (0.1 GB as float)": what a header asks lumis to allocate.
+std::string declared_size(const OIIO::ImageSpec& spec, double float_bytes) {
+  char gigabytes[32];
+  std::snprintf(gigabytes, sizeof(gigabytes), "%.1f GB", float_bytes / 1e9);
+  return std::to_string(spec.width) + "x" + std::to_string(spec.height) + " with " + std::to_string(spec.nchannels) +
+         " channels (" + gigabytes + " as float)";
+}
+
+/// Every channel of an opened image as float (see read_image); `name` starts the messages, `encoded_bytes` is the
+/// size of the file (or of the bytes in memory).
+Image decode(OIIO::ImageInput& in, const std::string& name, bool srgb_to_linear_colour, uint64_t encoded_bytes) {
+  const OIIO::ImageSpec& spec = in.spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail(name, "image has no pixels");
+  if (spec.depth > 1) fail(name, "volume images are not supported");
+  // A header that declares far more pixels than its file could hold (a corrupt or hostile size field) is refused
+  // before gigabytes are allocated and zeroed. Deflate (PNG, EXR's zip) compresses at most about 1032:1: a flat
+  // 8-bit 16k x 8k PNG decodes to 3,900 float bytes per file byte (measured), a flat 1-bit one to about 33,000. The
+  // bound is 65536 per byte, applied only above 1 GB of floats (a 16k x 8k RGB map is 1.6 GB); only a flat 1-bit
+  // palette image, expanded to RGBA, could exceed it.
+  const double float_bytes = double(spec.width) * double(spec.height) * double(spec.nchannels) * sizeof(float);
+  if (float_bytes > 1e9 && float_bytes > 65536.0 * double(encoded_bytes))
+    fail(name, "the header declares " + declared_size(spec, float_bytes) + ", but the file holds only " +
+                   std::to_string(encoded_bytes) + " bytes: a corrupt header");
+  try {
+    return decode_pixels(in, name, srgb_to_linear_colour);
+  } catch (const std::bad_alloc&) {
+    fail(name, declared_size(spec, float_bytes) + " needs more memory than is available");
+  }
+}
+
 /// Straight (unassociated) alpha: glTF textures store colour and coverage independently.
 OIIO::ImageSpec read_config() {
   OIIO::ImageSpec config;
@@ -201,7 +231,8 @@ Image read_image(const std::string& path, bool srgb_to_linear_colour) {
     const std::string why = first_line(OIIO::geterror());
     fail(path, why.empty() ? "unreadable or unsupported image format" : why);
   }
-  return decode(*in, path, srgb_to_linear_colour);
+  std::error_code size_error;
+  return decode(*in, path, srgb_to_linear_colour, fs::file_size(path, size_error));
 }
 
 Image read_image_memory(const unsigned char* bytes, size_t size, const std::string& format, const std::string& name,
@@ -219,7 +250,7 @@ Image read_image_memory(const unsigned char* bytes, size_t size, const std::stri
     const std::string why = first_line(in->geterror());
     fail(name, why.empty() ? "unreadable " + format + " data" : why);
   }
-  return decode(*in, name, srgb_to_linear_colour);
+  return decode(*in, name, srgb_to_linear_colour, size);
 }
 
 void write_image(const std::string& path, const Image& image, const WriteOptions& options) {

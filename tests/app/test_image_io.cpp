@@ -244,6 +244,34 @@ TEST_F(ImageIoTest, ErrorsAndAtomicWrites) {
     } catch (const ImageError& e) {
       EXPECT_EQ(std::string(e.what()).rfind(junk + ": ", 0), 0u) << e.what();
     }
+    // A header whose size field declares far more pixels than the file holds (20000x20000 from a 64x64 EXR's
+    // bytes) is refused before 4.8 GB are allocated, from a file and from memory.
+    {
+      const std::string small = file("small.exr"), forged = file("forged.exr");
+      write_image(small, gradient(64, 64, {"R", "G", "B"}));
+      std::ifstream in(small, std::ios::binary);
+      std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      const std::string attribute("dataWindow\0box2i\0", 17);
+      const size_t at = bytes.find(attribute);
+      ASSERT_NE(at, std::string::npos);
+      const int32_t window[4] = {0, 0, 19999, 19999};
+      bytes.replace(at + attribute.size() + 4, sizeof(window), reinterpret_cast<const char*>(window), sizeof(window));
+      std::ofstream(forged, std::ios::binary) << bytes;
+      const std::string expected = ": the header declares 20000x20000 with 3 channels (4.8 GB as float), but the "
+                                   "file holds only " + std::to_string(bytes.size()) + " bytes: a corrupt header";
+      try {
+        read_image(forged);
+        ADD_FAILURE() << "expected ImageError for a forged size";
+      } catch (const ImageError& e) {
+        EXPECT_EQ(std::string(e.what()), forged + expected);
+      }
+      try {
+        read_image_memory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), "openexr", "embedded");
+        ADD_FAILURE() << "expected ImageError for a forged size in memory";
+      } catch (const ImageError& e) {
+        EXPECT_EQ(std::string(e.what()), "embedded" + expected);
+      }
+    }
     // A pipe or a device would block or stream forever: refused by name, before any decoder opens it.
     const std::string pipe = file("pipe.png");
     ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
