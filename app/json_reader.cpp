@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "app/json_depth.h"
 #include "app/scene_error.h"
 
 namespace lumis {
@@ -131,15 +132,6 @@ class DomBuilder : public nlohmann::json_sax<Json> {
   }
 };
 
-// nlohmann reports a 1-based count of characters read; turn it into 1-based line and column.
-std::string line_column(const std::string& text, size_t byte) {
-  const size_t index = std::min(byte == 0 ? 0 : byte - 1, text.size());
-  size_t line = 1, line_start = 0;
-  for (size_t i = 0; i < index; ++i)
-    if (text[i] == '\n') ++line, line_start = i + 1;
-  return std::to_string(line) + ":" + std::to_string(index - line_start + 1);
-}
-
 // "[json.exception.parse_error.101] parse error at line 3, column 7: syntax error ..." -> "syntax error ...".
 std::string strip_nlohmann_prefix(std::string m) {
   if (m.rfind("[json.exception.", 0) == 0) {
@@ -161,7 +153,8 @@ Json parse_json_text(const std::string& text, const std::string& file) {
   if (Json::sax_parse(text, &builder)) return std::move(builder.root);
   if (!builder.duplicate_pointer.empty())
     throw SceneError(file, builder.duplicate_pointer, "duplicate key (each key may appear once per object)");
-  throw SceneError(file, line_column(text, builder.error_byte),
+  // nlohmann reports a 1-based count of characters read.
+  throw SceneError(file, json_line_column(text, builder.error_byte == 0 ? 0 : builder.error_byte - 1),
                    "invalid JSON: " + strip_nlohmann_prefix(builder.error_message));
 }
 
