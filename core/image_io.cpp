@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <new>
 #include <filesystem>
 #include <fstream>
+#include <new>
 #include <system_error>
 
 #include "core/file_ext.h"
