@@ -19,6 +19,7 @@
 
 #include "app/scene_error.h"
 #include "app/scene_loader.h"
+#include "core/atomic_write.h"
 #include "core/file_ext.h"
 #include "integrators/integrator.h"
 #include "integrators/render.h"
@@ -417,10 +418,8 @@ int run_bench(const BenchOptions& o) {
 
   print_bench_report(report);
   if (!o.json_out.empty()) {
-    std::ofstream out(o.json_out);
-    out << bench_report_json(report) << "\n";
-    if (!out) {
-      std::cerr << "lumis: " << o.json_out << ": cannot write the JSON report\n";
+    if (const std::string why = write_file_atomically(o.json_out, bench_report_json(report) + "\n"); !why.empty()) {
+      std::cerr << "lumis: " << o.json_out << ": " << why << "\n";
       return 1;
     }
   }

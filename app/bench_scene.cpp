@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -11,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/bench.h"
+#include "core/atomic_write.h"
 #include "core/math.h"
 
 namespace lumis {
@@ -174,19 +174,20 @@ LargeSceneInfo write_large_scene(const std::string& path, size_t min_triangles) 
   std::string text = doc.dump();
   while (text.size() % 4) text.push_back(' ');
   const uint32_t total = uint32_t(12 + 8 + text.size() + 8 + bin.size());
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
-  auto u32 = [&out](uint32_t v) { out.write(reinterpret_cast<const char*>(&v), 4); };  // little-endian hosts
+  std::string file;
+  file.reserve(total);
+  auto u32 = [&file](uint32_t v) { file.append(reinterpret_cast<const char*>(&v), 4); };  // little-endian hosts
   u32(0x46546C67);  // "glTF"
   u32(2);
   u32(total);
   u32(uint32_t(text.size()));
   u32(0x4E4F534A);  // "JSON"
-  out.write(text.data(), std::streamsize(text.size()));
+  file += text;
   u32(uint32_t(bin.size()));
   u32(0x004E4942);  // "BIN\0"
-  out.write(reinterpret_cast<const char*>(bin.data()), std::streamsize(bin.size()));
-  if (!out) throw std::runtime_error(path + ": write failed");
+  file.append(reinterpret_cast<const char*>(bin.data()), bin.size());
+  if (const std::string why = write_file_atomically(path, file); !why.empty())
+    throw std::runtime_error(path + ": " + why);
   return {triangles, total};
 }
 

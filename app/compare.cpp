@@ -16,6 +16,7 @@
 #include "app/plot.h"
 #include "app/scene_error.h"
 #include "app/scene_loader.h"
+#include "core/atomic_write.h"
 #include "core/image_io.h"
 #include "integrators/render.h"
 
@@ -49,15 +50,10 @@ std::string read_file_bytes(const std::string& path) {
   return ss.str();
 }
 
+/// Whole or not at all, like write_image: readers never see half a report.
 void write_text(const fs::path& path, const std::string& text) {
-  // Same-folder temporary plus rename, like write_image: readers never see half a report.
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error(path.string() + ": cannot write");
-  }
-  fs::rename(tmp, path);
+  if (const std::string why = write_file_atomically(path.string(), text); !why.empty())
+    throw std::runtime_error(path.string() + ": " + why);
 }
 
 struct Rendered {

@@ -1,6 +1,7 @@
 // lumis: an offline CPU path tracer. Subcommands: render, warptest (and more as they land).
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <iostream>
 
 #include "app/cli.h"
@@ -13,6 +14,9 @@ int main(int argc, char** argv) {
   // Usage errors start with "lumis: ", as every other message does.
   app.failure_message(
       [](const CLI::App* a, const CLI::Error& e) { return "lumis: " + CLI::FailureMessage::simple(a, e); });
+  // Past a file-size limit (ulimit -f), a write fails with EFBIG and lumis names the file; the default action of
+  // SIGXFSZ would instead kill it with a core dump and leave its temporary file behind.
+  std::signal(SIGXFSZ, SIG_IGN);
   int exit_code = 0;
   lumis::register_render_command(app, exit_code);
   lumis::register_warptest_command(app, exit_code);

@@ -41,10 +41,11 @@ std::string format_count(double v) {
 }
 
 // What a render of w x h pixels still allocates after the scene is loaded: the film's accumulators (88 bytes of
-// sums, AOVs and counts per pixel, rounded up) plus the float image handed to the writer and the writer's copy.
+// sums, AOVs and counts per pixel, rounded up) plus the float image handed to the writer, the writer's copy and
+// the encoded file, which is held in memory until it is written whole (at most as large as the floats).
 uint64_t render_memory_estimate(int width, int height, int channels) {
   const uint64_t pixels = static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
-  return pixels * (100 + 2 * 4 * static_cast<uint64_t>(channels));
+  return pixels * (100 + 3 * 4 * static_cast<uint64_t>(channels));
 }
 
 // Bytes this process may still allocate: MemAvailable from /proc/meminfo, lowered by an address-space limit

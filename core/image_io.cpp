@@ -2,7 +2,6 @@
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +11,7 @@
 #include <new>
 #include <system_error>
 
+#include "core/atomic_write.h"
 #include "core/file_ext.h"
 #include "core/png_chunks.h"
 
@@ -63,13 +63,17 @@ Color pixel_rgb(const Image& img, size_t i) {
   return Color(p[0]);
 }
 
-void write_to(const std::string& final_path, const std::string& tmp, const Image& image, Kind kind,
-              const WriteOptions& options) {
+/// The file's bytes, encoded in memory: the writers never touch the disk, so none of their ways of failing there
+/// applies (libpng ignoring a short write, libjpeg calling exit()); write_file_atomically checks every step instead.
+std::vector<unsigned char> encode(const std::string& final_path, const Image& image, Kind kind,
+                                  const WriteOptions& options) {
   const size_t n = static_cast<size_t>(image.width) * image.height;
-  // OIIO picks the writer from the extension, which the temporary name lacks: name the format explicitly.
   const char* format = kind == Kind::Exr ? "openexr" : kind == Kind::Hdr ? "hdr" : kind == Kind::Png ? "png" : "jpeg";
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
   auto out = OIIO::ImageOutput::create(format);
   if (!out) fail(final_path, "no " + std::string(format) + " writer: " + OIIO::geterror());
+  if (!out->set_ioproxy(&memory)) fail(final_path, "the " + std::string(format) + " writer cannot write to memory");
   auto add_metadata = [&](OIIO::ImageSpec& spec) {
     for (const auto& [key, value] : options.metadata) spec.attribute(key, value);
   };
@@ -80,7 +84,7 @@ void write_to(const std::string& final_path, const std::string& tmp, const Image
     spec.alpha_channel = image.channel_index("A");
     spec.attribute("compression", "zip");
     add_metadata(spec);
-    if (!out->open(tmp, spec)) fail(final_path, out->geterror());
+    if (!out->open(final_path, spec)) fail(final_path, out->geterror());
     if (!out->write_image(OIIO::TypeDesc::FLOAT, image.data.data())) fail(final_path, out->geterror());
   } else if (kind == Kind::Hdr) {
     std::vector<float> rgb(n * 3);
@@ -90,7 +94,7 @@ void write_to(const std::string& final_path, const std::string& tmp, const Image
     }
     OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT);
     add_metadata(spec);
-    if (!out->open(tmp, spec)) fail(final_path, out->geterror());
+    if (!out->open(final_path, spec)) fail(final_path, out->geterror());
     if (!out->write_image(OIIO::TypeDesc::FLOAT, rgb.data())) fail(final_path, out->geterror());
   } else {
     // OIIO quantises float to 8 bits without any transfer curve, so the sRGB encoding is ours.
@@ -108,10 +112,12 @@ void write_to(const std::string& final_path, const std::string& tmp, const Image
     spec.attribute("oiio:ColorSpace", "sRGB");
     add_metadata(spec);
     if (kind == Kind::Jpg) spec.attribute("Compression", "jpeg:95");
-    if (!out->open(tmp, spec)) fail(final_path, out->geterror());
+    if (!out->open(final_path, spec)) fail(final_path, out->geterror());
     if (!out->write_image(OIIO::TypeDesc::UINT8, rgb.data())) fail(final_path, out->geterror());
   }
   if (!out->close()) fail(final_path, out->geterror());
+  out.reset();  // the writer lets go of `memory` before `bytes` leaves
+  return bytes;
 }
 
 }  // namespace
@@ -261,17 +267,10 @@ void write_image(const std::string& path, const Image& image, const WriteOptions
       image.channel_names.size() != static_cast<size_t>(image.channels))
     fail(path, "image data does not match its size and channel count");
 
-  const std::string tmp = path + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
-  try {
-    write_to(path, tmp, image, kind, options);
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) fail(path, "cannot rename temporary file: " + ec.message());
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw;
-  }
+  const std::vector<unsigned char> bytes = encode(path, image, kind, options);
+  const std::string why =
+      write_file_atomically(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+  if (!why.empty()) fail(path, why);
 }
 
 }  // namespace lumis

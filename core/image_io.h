@@ -27,8 +27,8 @@ struct WriteOptions {
 };
 
 /// Write an image, format by extension: .exr (linear half/float, all channels), .hdr, .png/.jpg (first three
-/// channels, exposure, sRGB transfer, clamp to [0,1]). Writes to a temporary name in the same folder and renames,
-/// so no half-written file exists. Throws ImageError naming the file on failure.
+/// channels, exposure, sRGB transfer, clamp to [0,1]). Encoded in memory, then written whole or not at all
+/// (write_file_atomically). Throws ImageError naming the file on failure (a full disk included).
 void write_image(const std::string& path, const Image& image, const WriteOptions& options = {});
 
 /// sRGB transfer (linear -> encoded) and its inverse.

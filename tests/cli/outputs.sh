@@ -3,7 +3,8 @@
 # scene list), naming the path given and not a temporary one; options that cannot take effect are refused (AOVs in
 # a PNG) or named in a warning (--mis-light-probability without the mis integrator); command-line errors start
 # with "lumis: " and give the accepted range; --uniform-measure takes the scene file's spelling too; --width or
-# --height alone keeps the aspect ratio; --camera is refused for a JSON scene; diff compares grey images.
+# --height alone keeps the aspect ratio; --camera is refused for a JSON scene; diff compares grey images; a write
+# cut short (a file-size limit standing in for a full disk) fails render, diff and compare without a short file.
 # Usage: outputs.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: outputs.sh path/to/lumis}
@@ -83,6 +84,29 @@ if command -v oiiotool >/dev/null; then
   expect 0 "$LUMIS" diff "$T/grey.png" "$T/grey.png" --threshold 0
   expect 1 "$LUMIS" diff "$T/grey.png" "$T/a.png" --metric maxabs --threshold 0
 fi
+
+# A write cut short (a full disk; here a file-size limit, `ulimit -f`, which fails writes the same way) is an error
+# naming the file, exit 1, and leaves neither a short file under the final name nor a temporary one: a PNG render
+# once exited 0 with a truncated file, and a JPEG left its temporary file after libjpeg ended the process.
+limited() {  # limited CODE CMD...: as expect, with files limited to 8 KiB
+  local want=$1; shift
+  ( ulimit -f 8; "$@" ) >"$T/out" 2>"$T/err"
+  local got=$?
+  [ "$got" = "$want" ] || { cat "$T/out" "$T/err"; fail "exit $got, expected $want with a file-size limit: $*"; }
+}
+mkdir "$T/full"
+for ext in png jpg exr; do
+  limited 1 "$LUMIS" render "$SCENE" --width 96 --spp 2 -q -o "$T/full/r.$ext"
+  has "lumis: $T/full/r.$ext: cannot write: File too large (after 8192 of "
+done
+expect 0 "$LUMIS" render "$SCENE" --width 96 --spp 1 --seed 1 -q -o "$T/n1.exr"
+expect 0 "$LUMIS" render "$SCENE" --width 96 --spp 1 --seed 2 -q -o "$T/n2.exr"
+limited 2 "$LUMIS" diff "$T/n1.exr" "$T/n2.exr" --heatmap "$T/full/heat.png"  # diff's errors exit 2
+has "lumis diff: $T/full/heat.png: cannot write: File too large"
+limited 1 "$LUMIS" compare "$SCENE" --width 64 --spp 1 --reference-spp 2 --integrators bsdf,nee_mis -o "$T/full/cmp"
+has "cannot write: File too large"
+leftover=$(find "$T/full" -type f \( -size 8192c -o -name '*tmp-*' \))
+[ -z "$leftover" ] || fail "a write cut short left files behind: $leftover"
 
 # bench: a scene that is not there fails the run before anything is measured, without printing empty tables.
 quick 1 "$LUMIS" bench "$SCENE" "$T/no-such-scene.json"

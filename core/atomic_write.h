@@ -1,0 +1,16 @@
+// Files written whole or not at all: every file lumis writes (images, reports, the bench's scene) goes through here,
+// so a full disk, a file-size limit or an interruption never leaves a half-written file under the name asked for.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace lumis {
+
+/// Writes `bytes` to `path` through a temporary file beside it (`path.tmp-<pid>`): every byte written and the file
+/// closed, each step checked, then renamed over `path`. So `path` keeps what it held before or holds all of `bytes`,
+/// never a part. Returns "" on success; otherwise the reason, one line without the temporary name ("cannot write:
+/// No space left on device (after 204800 of 615084 bytes)"), with the temporary file removed.
+std::string write_file_atomically(const std::string& path, std::string_view bytes);
+
+}  // namespace lumis

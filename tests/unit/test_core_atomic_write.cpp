@@ -1,0 +1,80 @@
+// write_file_atomically: a file is written whole or not at all, and a failure says why without naming the
+// temporary file. A file-size limit stands in for a full disk (tests/support/file_size_limit.h).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/atomic_write.h"
+#include "tests/support/file_size_limit.h"
+#include "tests/support/test_dir.h"
+
+namespace fs = std::filesystem;
+using namespace lumis;
+
+namespace {
+
+class AtomicWrite : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = test::fresh_test_dir("lumis_atomic_write"); }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+  std::string content(const std::string& name) const {
+    std::ifstream in(file(name), std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }
+  /// What the folder holds: a temporary file left behind shows up here.
+  std::vector<std::string> listing() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
+    return names;
+  }
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(AtomicWrite, WritesWholeFilesAndReplacesOldOnes) {
+  EXPECT_EQ(write_file_atomically(file("a.txt"), "first"), "");
+  EXPECT_EQ(content("a.txt"), "first");
+  const std::string big(300000, 'x');
+  EXPECT_EQ(write_file_atomically(file("a.txt"), big), "");
+  EXPECT_EQ(content("a.txt"), big);
+  EXPECT_EQ(write_file_atomically(file("empty.txt"), ""), "");
+  EXPECT_TRUE(fs::exists(file("empty.txt")));
+  EXPECT_EQ(fs::file_size(file("empty.txt")), 0u);
+  EXPECT_EQ(listing().size(), 2u);
+}
+
+// The case that made this function: a write cut short (full disk, file-size limit) must not leave a short file
+// under the name asked for, and must say how far it got.
+TEST_F(AtomicWrite, AWriteCutShortKeepsTheOldFileAndLeavesNoTemporary) {
+  ASSERT_EQ(write_file_atomically(file("keep.bin"), "old content"), "");
+  const std::string bytes(100000, 'y');
+  std::string why;
+  {
+    test::FileSizeLimit limit(4096);
+    if (!limit.ok()) GTEST_SKIP() << "cannot set a file-size limit here";
+    why = write_file_atomically(file("keep.bin"), bytes);
+    // A new name fails alike and leaves nothing.
+    EXPECT_EQ(write_file_atomically(file("new.bin"), bytes), why);
+  }
+  EXPECT_EQ(why, "cannot write: File too large (after 4096 of 100000 bytes)");
+  EXPECT_EQ(content("keep.bin"), "old content");
+  EXPECT_EQ(listing(), std::vector<std::string>{"keep.bin"});
+}
+
+TEST_F(AtomicWrite, AMissingFolderOrAFolderInTheWayIsAnErrorNamingNoTemporary) {
+  EXPECT_EQ(write_file_atomically(file("no-such-folder/a.txt"), "x"),
+            "cannot create the file: No such file or directory");
+  fs::create_directories(dir_ / "taken" / "inside");
+  const std::string why = write_file_atomically(file("taken"), "x");
+  EXPECT_EQ(why.rfind("cannot rename the finished temporary file into place: ", 0), 0u) << why;
+  EXPECT_EQ(why.find("tmp-"), std::string::npos) << why;
+  EXPECT_EQ(listing(), std::vector<std::string>{"taken"});
+}
