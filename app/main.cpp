@@ -1,8 +1,12 @@
-// lumis: an offline CPU path tracer. Subcommands: render, warptest (and more as they land).
+// lumis: an offline CPU path tracer. Subcommands: render, compare, diff, warptest, bench.
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <csignal>
+#include <cstdio>
 #include <iostream>
+#include <string>
+#include <system_error>
 
 #include "app/cli.h"
 
@@ -34,6 +38,15 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return 2;
+  }
+  // Output lost to a full disk (`lumis diff --json > metrics.json`) must not pass for success, as in coreutils.
+  // diff's errors exit 2, since its 1 means "the images differ"; every other command's I/O errors exit 1.
+  errno = 0;
+  std::cout.flush();
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+    const std::string why = errno ? ": " + std::generic_category().message(errno) : "";
+    std::cerr << "lumis: cannot write the standard output" << why << "\n";
+    return app.got_subcommand("diff") ? 2 : 1;
   }
   return exit_code;
 }

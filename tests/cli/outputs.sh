@@ -4,7 +4,8 @@
 # a PNG) or named in a warning (--mis-light-probability without the mis integrator); command-line errors start
 # with "lumis: " and give the accepted range; --uniform-measure takes the scene file's spelling too; --width or
 # --height alone keeps the aspect ratio; --camera is refused for a JSON scene; diff compares grey images; a write
-# cut short (a file-size limit standing in for a full disk) fails render, diff and compare without a short file.
+# cut short (a file-size limit standing in for a full disk) fails render, diff and compare without a short file,
+# and output lost on stdout is an error too.
 # Usage: outputs.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: outputs.sh path/to/lumis}
@@ -107,6 +108,13 @@ limited 1 "$LUMIS" compare "$SCENE" --width 64 --spp 1 --reference-spp 2 --integ
 has "cannot write: File too large"
 leftover=$(find "$T/full" -type f \( -size 8192c -o -name '*tmp-*' \))
 [ -z "$leftover" ] || fail "a write cut short left files behind: $leftover"
+# The same for what goes to stdout (diff --json > metrics.json on a full disk): an error, not a silent success.
+if [ -w /dev/full ]; then
+  "$LUMIS" diff "$T/n1.exr" "$T/n1.exr" --json >/dev/full 2>"$T/err"
+  got=$?
+  [ "$got" = 2 ] || { cat "$T/err"; fail "diff --json to a full disk: exit $got, expected 2"; }
+  has "lumis: cannot write the standard output: No space left on device"
+fi
 
 # bench: a scene that is not there fails the run before anything is measured, without printing empty tables.
 quick 1 "$LUMIS" bench "$SCENE" "$T/no-such-scene.json"
