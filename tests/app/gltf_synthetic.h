@@ -72,13 +72,12 @@ inline std::string make_glb(std::string json, std::vector<unsigned char> bin) {
   return "glTF" + u32(2) + u32(12 + 8 + json.size() + chunk.size()) + u32(json.size()) + "JSON" + json + chunk;
 }
 
-class GltfFiles : public ::testing::Test {
+class GltfFiles : public test::FolderTest {
  protected:
-  void SetUp() override { dir_ = test::fresh_test_dir("lumis_gltf"); }
-  void TearDown() override { fs::remove_all(dir_); }
+  GltfFiles() : FolderTest("lumis_gltf") {}
 
   std::string write(const std::string& name, const std::string& text) {
-    const std::string p = (dir_ / name).string();
+    const std::string p = file(name);
     std::ofstream(p, std::ios::binary) << text;
     return p;
   }
@@ -101,7 +100,6 @@ class GltfFiles : public ::testing::Test {
       for (const auto& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
     }
   }
-  fs::path dir_;
 };
 
 /// One triangle (0,0,0) (1,0,0) (0,1,0) with normal +z, ushort indices: views 0 (positions), 1 (normals), 2

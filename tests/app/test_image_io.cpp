@@ -19,23 +19,14 @@ using namespace lumis;
 namespace {
 
 /// A fresh, empty folder per test, removed afterwards.
-class ImageIoTest : public ::testing::Test {
+class ImageIoTest : public test::FolderTest {
  protected:
-  void SetUp() override { dir_ = test::fresh_test_dir("lumis_image_io"); }
-  void TearDown() override { fs::remove_all(dir_); }
+  ImageIoTest() : FolderTest("lumis_image_io") {}
   /// Empty the folder again (each block of a test starts from nothing).
   void reset() {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
-  std::string file(const std::string& name) const { return (dir_ / name).string(); }
-  /// Nothing but the named file in the folder (no temporary left behind).
-  std::vector<std::string> listing() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
-    return names;
-  }
-  fs::path dir_;
 };
 
 Image gradient(int w, int h, std::vector<std::string> names) {

@@ -17,24 +17,15 @@ using namespace lumis;
 
 namespace {
 
-class AtomicWrite : public ::testing::Test {
+class AtomicWrite : public test::FolderTest {
  protected:
-  void SetUp() override { dir_ = test::fresh_test_dir("lumis_atomic_write"); }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+  AtomicWrite() : FolderTest("lumis_atomic_write") {}
   std::string content(const std::string& name) const {
     std::ifstream in(file(name), std::ios::binary);
     std::ostringstream ss;
     ss << in.rdbuf();
     return ss.str();
   }
-  /// What the folder holds: a temporary file left behind shows up here.
-  std::vector<std::string> listing() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
-    return names;
-  }
-  fs::path dir_;
 };
 
 }  // namespace
