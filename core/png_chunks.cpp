@@ -1,5 +1,8 @@
 #include "core/png_chunks.h"
 
+#include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cstring>
 
 namespace lumis {
@@ -12,7 +15,42 @@ constexpr size_t kCrc = 4;     // after it
 
 bool is_letter(unsigned char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
 
+/// CRC-32 of one byte per entry (reflected polynomial 0xEDB88320, as PNG and zlib use).
+constexpr std::array<uint32_t, 256> kCrcTable = [] {
+  std::array<uint32_t, 256> t{};
+  for (uint32_t n = 0; n < 256; ++n) {
+    uint32_t c = n;
+    for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+    t[n] = c;
+  }
+  return t;
+}();
+
+/// Whether the critical chunk at `offset` (type `head[4..7]`, `length` bytes of data) fails its CRC. Reads the data
+/// in blocks; false when the reader fails (the caller has already checked that the chunk fits in the file).
+bool crc_fails(size_t offset, unsigned long length, const unsigned char* head, const ByteReader& read) {
+  uint32_t crc = png_crc32(0, head + 4, 4);
+  unsigned char block[1 << 16];
+  for (size_t done = 0; done < length;) {
+    const size_t n = std::min<size_t>(sizeof block, length - done);
+    if (!read(offset + kHeader + done, block, n)) return false;
+    crc = png_crc32(crc, block, n);
+    done += n;
+  }
+  unsigned char stored[kCrc];
+  if (!read(offset + kHeader + length, stored, kCrc)) return false;
+  const uint32_t want = (uint32_t{stored[0]} << 24) | (uint32_t{stored[1]} << 16) | (uint32_t{stored[2]} << 8) |
+                        uint32_t{stored[3]};
+  return crc != want;
+}
+
 }  // namespace
+
+uint32_t png_crc32(uint32_t crc, const unsigned char* bytes, size_t n) {
+  crc = ~crc;
+  for (size_t i = 0; i < n; ++i) crc = kCrcTable[(crc ^ bytes[i]) & 0xFFu] ^ (crc >> 8);
+  return ~crc;
+}
 
 std::string png_structure_error(size_t size, const ByteReader& read) {
   unsigned char head[kHeader];
@@ -37,6 +75,14 @@ std::string png_structure_error(size_t size, const ByteReader& read) {
     if (size - offset < kHeader + length + kCrc)
       return "truncated PNG: chunk " + type + at + std::to_string(offset) + " declares " + std::to_string(length) +
              " bytes of data, but the file ends at byte " + std::to_string(size);
+    // Critical chunks (an upper-case first letter) only: libpng fails on their CRC by longjmp, as on a truncated
+    // file (PLTE too, in a true-colour image as in a palette one), but merely warns about an ancillary chunk's and
+    // drops it, which is not worth refusing a file for. IEND is not checked either: it holds no data, and
+    // OpenImageIO never reads it, so a file damaged only there reads.
+    const bool critical = head[4] <= 'Z' && type != "IEND";
+    if (critical && crc_fails(offset, length, head, read))
+      return "corrupt PNG: chunk " + type + at + std::to_string(offset) +
+             " fails its CRC check: the file is damaged";
     if (type == "IEND") return {};
     previous = "chunk " + type;
     offset += kHeader + length + kCrc;

@@ -343,5 +343,43 @@ TEST_F(ImageIoTest, ErrorsAndAtomicWrites) {
       }
     }
   }
+  {  // DamagedPngsAreErrorsBeforeLibpng: a flipped bit in the pixel data (a bad disk, a bad copy) fails the IDAT
+     // chunk's CRC, which libpng reports by longjmp with its own line on stderr; core/png_chunks names it first.
+    reset();
+    const std::string whole = file("whole.png"), damaged = file("damaged.png");
+    write_image(whole, gradient(64, 64, {"R", "G", "B"}));
+    std::ifstream in(whole, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    int flips = 0;
+    testing::internal::CaptureStderr();
+    for (size_t at = 8; at + 12 <= bytes.size();) {  // each chunk: length, type, data, CRC
+      const auto u = [&](size_t i) { return static_cast<size_t>(static_cast<unsigned char>(bytes[i])); };
+      const size_t length = u(at) << 24 | u(at + 1) << 16 | u(at + 2) << 8 | u(at + 3);
+      if (bytes.compare(at + 4, 4, "IDAT") == 0) {
+        for (size_t i = at + 8; i < at + 8 + length; i += 53, ++flips) {
+          std::string copy = bytes;
+          copy[i] = static_cast<char>(copy[i] ^ 0x10);
+          std::ofstream(damaged, std::ios::binary | std::ios::trunc) << copy;
+          const std::string want = ": corrupt PNG: chunk IDAT at byte " + std::to_string(at) +
+                                   " fails its CRC check: the file is damaged";
+          try {
+            read_image(damaged);
+            ADD_FAILURE() << "expected ImageError: a bit flipped at byte " << i;
+          } catch (const ImageError& e) {
+            EXPECT_EQ(std::string(e.what()), damaged + want);
+          }
+          try {
+            read_image_memory(reinterpret_cast<const unsigned char*>(copy.data()), copy.size(), "png", "embedded");
+            ADD_FAILURE() << "expected ImageError: a bit flipped at byte " << i << " in memory";
+          } catch (const ImageError& e) {
+            EXPECT_EQ(std::string(e.what()), "embedded" + want);
+          }
+        }
+      }
+      at += 12 + length;
+    }
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << "libpng saw a damaged PNG";
+    EXPECT_GT(flips, 5);
+  }
 }
 

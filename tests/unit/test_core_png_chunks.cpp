@@ -1,11 +1,13 @@
 // core/png_chunks: a PNG cut anywhere after its signature is named as truncated, with the byte where it ends; a
-// whole file, a non-PNG and trailing bytes after IEND pass. The image-level test (a real PNG cut at every length,
-// from a file and from memory, with nothing printed by libpng) is ImageIoTest.ErrorsAndAtomicWrites.
+// critical chunk with a flipped bit as corrupt; a whole file, a non-PNG, trailing bytes after IEND and a damaged
+// ancillary chunk pass. The image-level test (a real PNG cut at every length and damaged, from a file and from
+// memory, with nothing printed by libpng) is ImageIoTest.ErrorsAndAtomicWrites.
 #include "core/png_chunks.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -14,10 +16,18 @@ namespace {
 
 using Bytes = std::vector<unsigned char>;
 
-void chunk(Bytes& out, const char* type, size_t length) {
-  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(static_cast<unsigned char>(length >> shift));
+void put32(Bytes& out, uint32_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(static_cast<unsigned char>(v >> shift));
+}
+
+/// A chunk of `length` bytes of data (0, 1, 2, ...; `first` in place of the first ones) and its CRC over type and
+/// data.
+void chunk(Bytes& out, const char* type, size_t length, const Bytes& first = {}) {
+  put32(out, static_cast<uint32_t>(length));
+  const size_t start = out.size();
   out.insert(out.end(), type, type + 4);
-  out.insert(out.end(), length + 4, 0);  // data and a CRC that is not checked here
+  for (size_t i = 0; i < length; ++i) out.push_back(i < first.size() ? first[i] : static_cast<unsigned char>(i));
+  put32(out, png_crc32(0, out.data() + start, 4 + length));
 }
 
 /// Signature, IHDR (13 bytes), two IDAT chunks, IEND: 8 + 25 + 112 + 12 + 12 = 169 bytes.
@@ -78,6 +88,58 @@ TEST(PngChunks, ReaderFailureIsTruncation) {
     return true;
   });
   EXPECT_EQ(why, "truncated PNG: the file ends inside the chunk header at byte 33");
+}
+
+TEST(PngChunks, Crc32MatchesTheStandardsCheckValues) {
+  const std::string check_input = "123456789";
+  EXPECT_EQ(png_crc32(0, reinterpret_cast<const unsigned char*>(check_input.data()), 9), 0xCBF43926u);
+  // Continued over two parts as over one.
+  const uint32_t first = png_crc32(0, reinterpret_cast<const unsigned char*>(check_input.data()), 4);
+  EXPECT_EQ(png_crc32(first, reinterpret_cast<const unsigned char*>(check_input.data()) + 4, 5), 0xCBF43926u);
+  // Every PNG ends with the same 12 bytes: an empty IEND and its CRC, AE 42 60 82.
+  const Bytes png = minimal_png();
+  EXPECT_EQ(Bytes(png.end() - 4, png.end()), (Bytes{0xAE, 0x42, 0x60, 0x82}));
+}
+
+// A flipped bit in a critical chunk's data or CRC is named with the chunk; in an ancillary chunk libpng only warns
+// and drops it, and IEND is never read, so those files pass here too.
+TEST(PngChunks, DamagedCriticalChunksAreCorruptAncillaryOnesPass) {
+  const Bytes png = minimal_png();
+  for (size_t i = 41; i < 41 + 100 + 4; ++i) {  // IDAT's data and CRC
+    Bytes damaged = png;
+    damaged[i] ^= 0x04;
+    EXPECT_EQ(check(damaged, damaged.size()), "corrupt PNG: chunk IDAT at byte 33 fails its CRC check: the file is "
+                                              "damaged") << i;
+  }
+  Bytes damaged = png;
+  damaged[20] ^= 0x80;  // IHDR's data
+  EXPECT_EQ(check(damaged, damaged.size()), "corrupt PNG: chunk IHDR at byte 8 fails its CRC check: the file is "
+                                            "damaged");
+  damaged = png;
+  damaged.back() ^= 1;  // IEND's CRC: OpenImageIO never reads IEND, so neither does this check
+  EXPECT_EQ(check(damaged, damaged.size()), "");
+  Bytes with_text(png.begin(), png.begin() + 33);
+  chunk(with_text, "tEXt", 20);
+  with_text.insert(with_text.end(), png.begin() + 33, png.end());
+  EXPECT_EQ(check(with_text, with_text.size()), "");
+  with_text[33 + 8 + 5] ^= 1;  // the tEXt chunk's data
+  EXPECT_EQ(check(with_text, with_text.size()), "");
+}
+
+// PLTE is critical in a true-colour image (where it only suggests colours) as in a palette image: Debian's libpng
+// 1.6.39 fails on its CRC in both (measured through OpenImageIO), so both are caught here.
+TEST(PngChunks, ADamagedPaletteIsCorruptInEveryColourType) {
+  for (const unsigned char colour_type : {3, 2}) {
+    Bytes png = {137, 'P', 'N', 'G', '\r', '\n', 26, '\n'};
+    chunk(png, "IHDR", 13, {0, 0, 0, 4, 0, 0, 0, 4, 8, colour_type});
+    chunk(png, "PLTE", 6);  // at byte 33, data from 41
+    chunk(png, "IDAT", 10);
+    chunk(png, "IEND", 0);
+    ASSERT_EQ(check(png, png.size()), "");
+    png[43] ^= 1;
+    EXPECT_EQ(check(png, png.size()), "corrupt PNG: chunk PLTE at byte 33 fails its CRC check: the file is damaged")
+        << int(colour_type);
+  }
 }
 
 }  // namespace
