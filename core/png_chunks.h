@@ -20,11 +20,11 @@ using ByteReader = std::function<bool(size_t offset, unsigned char* out, size_t 
 /// PNG at all (the decoder says so). Reads the critical chunks whole, the ancillary ones' headers only.
 std::string png_structure_error(size_t size, const ByteReader& read);
 
+/// The same for bytes held in memory.
+std::string png_structure_error(const unsigned char* bytes, size_t size);
+
 /// CRC-32 as PNG defines it, continued from `crc` (0 to start) over `n` bytes: png_crc32(0, "123456789") is
 /// 0xCBF43926.
 uint32_t png_crc32(uint32_t crc, const unsigned char* bytes, size_t n);
-
-/// The same for bytes held in memory.
-std::string png_structure_error(const unsigned char* bytes, size_t size);
 
 }  // namespace lumis
