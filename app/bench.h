@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "app/cli.h"
+#include "app/render_overrides.h"
 #include "integrators/scene.h"
 
 namespace lumis {

@@ -3,24 +3,14 @@
 #pragma once
 
 #include <cmath>
-#include <optional>
+#include <exception>
 #include <string>
-#include <vector>
 
 #include <CLI/CLI.hpp>
 
-#include "integrators/scene.h"
+#include "app/render_overrides.h"
 
 namespace lumis {
-
-/// Render options that override the scene file (shared by render, compare and bench).
-struct RenderOverrides {
-  std::optional<uint32_t> spp, seed;
-  std::optional<int> max_depth, rr_depth, width, height, threads;
-  std::optional<std::string> integrator, sampler, light_selection, mis_heuristic, uniform_measure;
-  std::optional<float> time, exposure, mis_light_probability;
-  std::string camera;  ///< a glTF file's camera (SceneLoadOptions::camera), from add_camera_option; empty: default
-};
 
 /// CLI11 check that a number option is finite: CLI::Range lets NaN through (every comparison with it is false).
 inline const CLI::Validator kFiniteNumber(
@@ -56,14 +46,6 @@ inline CLI::Validator number_in(double lo, double hi, const std::string& expecte
 void add_render_overrides(CLI::App& cmd, RenderOverrides& o);
 /// Register --camera (render and compare: commands that load one scene).
 void add_camera_option(CLI::App& cmd, RenderOverrides& o);
-/// Apply overrides to settings; throws std::invalid_argument for bad names (listing valid ones).
-void apply_overrides(const RenderOverrides& o, RenderSettings& s);
-/// Warnings for overrides given on the command line that none of the integrators uses (for example
-/// --mis-light-probability with nee_mis), one sentence each.
-std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::vector<std::string>& integrators);
-
-/// The built-in default scene (scenes/cornell-sphere.json), found next to the sources or the executable.
-std::string default_scene_path();
 
 /// True when stderr is a terminal.
 bool stderr_is_tty();
