@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (clang, ASan + UBSan, every layer instrumented) in build-fuzz/ and runs each for
-# SECONDS (default 60). Seeds: scenes/*.json and tests/malformed/ cases, plus the small self-contained glTF models
-# of the shared assets folder (copied into build-fuzz/seeds/ at run time, never committed). New corpus entries
-# accumulate in build-fuzz/corpus/<target>/, crashing inputs in build-fuzz/artifacts/. Exits non-zero when a target
-# finds a crash, a leak, a timeout or a sanitizer report.
+# Builds the libFuzzer targets (clang, ASan + UBSan; the scene loaders and every library below them instrumented,
+# the commands not built) in build-fuzz/ and runs each for SECONDS (default 60). Seeds: scenes/*.json and
+# tests/malformed/ cases, plus the small self-contained glTF models of the shared assets folder (copied into
+# build-fuzz/seeds/ at run time, never committed). New corpus entries accumulate in build-fuzz/corpus/<target>/,
+# crashing inputs in build-fuzz/artifacts/. Exits non-zero when a target finds a crash, a leak, a timeout or a
+# sanitizer report.
 # Usage: scripts/fuzz.sh [SECONDS]     (environment: LUMIS_SHARED_ASSETS=folder with gltf/, FUZZ_JOBS=build jobs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
