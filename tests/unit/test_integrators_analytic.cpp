@@ -1,10 +1,12 @@
 // Every integrator variant against scenes with closed-form answers:
 //  - white furnace: diffuse sphere (albedo 0.8) in a uniform environment (radiance 1): 0.8 on the sphere, 1 off it;
+//  - glossy furnace: the same with the two-lobe glTF BSDF, whose value (its directional albedo) has no closed form:
+//    every variant against the `bsdf` variant's image;
 //  - closed sphere of albedo 0.5 emitting 0.5 inside: radiance 1 everywhere (pbrt-v4's analytic test);
 //  - sphere light (radius r, radiance L, height h) over a diffuse plane (albedo rho), direct lighting only: the
 //    point straight below has radiance rho L (r/h)^2.
 // Each check is a z-test of a region mean against the exact value, using the film's own variance estimate.
-// Level: alpha = 0.01 for the whole file, Sidak-split over all 60 z-tests (20 regions x 3 channels), so the
+// Level: alpha = 0.01 for the whole file, Sidak-split over all 72 z-tests (24 regions x 3 channels), so the
 // file fails by chance with probability below 1% for a correct renderer at any seed; seeds are fixed, so a pass
 // is reproducible. Bias of the truncated series (max depth) is below 1e-6 and included in the expectation.
 #include <gtest/gtest.h>
@@ -28,7 +30,7 @@ Camera make_camera(Vec3 from, Vec3 to, float fov) {
   c.fov_y_degrees = fov;
   return c;
 }
-constexpr int kRegionTests = 60;  // 20 regions x 3 channels (Bonferroni-safe under dependence)
+constexpr int kRegionTests = 72;  // 24 regions x 3 channels (Bonferroni-safe under dependence)
 
 struct Case {
   std::string integrator;
@@ -64,9 +66,9 @@ void expect_region(const test::RegionMean& r, double expected, const std::string
 
 // --- White furnace ---------------------------------------------------------------------------------------------
 
-std::unique_ptr<Scene> furnace_scene() {
+std::unique_ptr<Scene> furnace_scene(std::unique_ptr<Material> material = make_diffuse_material(Color(0.8f))) {
   auto s = std::make_unique<Scene>();
-  s->materials.push_back(make_diffuse_material(Color(0.8f)));
+  s->materials.push_back(std::move(material));
   s->geometry.add_sphere(Sphere{{0, 0, 0}, 1, 0, -1});
   s->lights.push_back(make_constant_environment(Color(1)));
   s->environment = 0;
@@ -99,6 +101,31 @@ TEST(IntegratorAnalytic, WhiteFurnace) {
                   c.integrator + " furnace sphere");
     expect_region(test::region_mean(film, [&](int x, int y) { return footprint(*scene, x, y) == 0; }), 1.0,
                   c.integrator + " furnace background");
+  }
+}
+
+// --- Glossy furnace ---------------------------------------------------------------------------------------------
+
+TEST(IntegratorAnalytic, GlossyFurnaceAgreement) {
+  // A white dielectric (base 0.8, roughness 0.5): a Lambert lobe under a GGX lobe, each sampled with probability
+  // 1/2. Light sampling and the one-sample combination must get that mixture density right to agree with pure
+  // BSDF sampling. Two-sample z-test of the sphere's region mean against a 256-spp `bsdf` reference.
+  PbrParams p;
+  p.base_color = Color(0.8f);
+  p.metallic = 0;
+  p.roughness = 0.5f;
+  auto scene = furnace_scene(make_pbr_material(p));
+  const auto on_sphere = [&](int x, int y) { return footprint(*scene, x, y) == 1; };
+  const test::RegionMean ref = test::region_mean(render_scene(*scene, "bsdf", SamplerType::Stratified, 256), on_sphere);
+  const double z_max = test::sidak_z(kAlpha, kRegionTests);
+  for (const Case& c : all_variants()) {
+    if (c.integrator == "bsdf") continue;
+    const test::RegionMean r = test::region_mean(render_scene(*scene, c.integrator, c.sampler, 64), on_sphere);
+    for (int k = 0; k < 3; ++k) {
+      const double sd = std::sqrt(r.var[k] + ref.var[k]), err = std::abs(r.mean[k] - ref.mean[k]);
+      EXPECT_LT(err, z_max * sd) << c.integrator << " glossy furnace: mean " << r.mean[k] << " reference "
+                                 << ref.mean[k] << " sd " << sd << " z " << err / sd;
+    }
   }
 }
 
