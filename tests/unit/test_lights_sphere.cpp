@@ -122,6 +122,10 @@ TEST(SphereLight, OneSidedAndHorizon) {
   const Vec3 p = kCenter + Vec3{0, 2, 0};
   EXPECT_EQ(light->importance({p, {0, 1, 0}}), 0.0f);
   EXPECT_GT(light->importance({p, normalize(Vec3{1, -0.2f, 0})}), 0.0f);
+  // The centre below the horizon (n.(c - p) = -0.39) but the top of the sphere above it (-0.39 > -r = -0.5): the
+  // light still reaches p, so it must stay selectable.
+  EXPECT_GT(light->importance({p, normalize(Vec3{1, 0.2f, 0})}), 0.0f);
+  EXPECT_EQ(light->importance({p, normalize(Vec3{1, 0.3f, 0})}), 0.0f);  // -0.57 < -0.5: wholly below
   const float cap = 2 * kPi * (1 - std::sqrt(1 - 0.25f * 0.25f));
   EXPECT_NEAR(light->importance({p, {0, 0, 0}}) / (cap * luminance(kRadiance)), 1.0f, 1e-4f);
   EXPECT_EQ(light->importance(kReceivers[3]), 0.0f) << "inside a one-sided sphere nothing arrives";
