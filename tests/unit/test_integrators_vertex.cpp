@@ -104,7 +104,8 @@ TEST(ShadingNormalRule, NoNextEventLightFromBelowTheGeometricSurface) {
   PathCounters counters;
   for (const bool weighted : {false, true}) {
     EXPECT_FALSE(sample_direct(*v, light_from(below), weighted, MisHeuristic::Balance, counters).has_value());
-    const std::optional<ShadowQuery> q = sample_direct(*v, light_from(above), weighted, MisHeuristic::Balance, counters);
+    const std::optional<ShadowQuery> q =
+        sample_direct(*v, light_from(above), weighted, MisHeuristic::Balance, counters);
     ASSERT_TRUE(q.has_value());  // the control: the same light just above the plane counts
     EXPECT_GT(q->value.x, 0.0f);
   }
