@@ -6,9 +6,9 @@
 //  - sphere light (radius r, radiance L, height h) over a diffuse plane (albedo rho), direct lighting only: the
 //    point straight below has radiance rho L (r/h)^2.
 // Each check is a z-test of a region mean against the exact value, using the film's own variance estimate.
-// Level: alpha = 0.01 for the whole file, Sidak-split over all 72 z-tests (24 regions x 3 channels), so the
-// file fails by chance with probability below 1% for a correct renderer at any seed; seeds are fixed, so a pass
-// is reproducible. Bias of the truncated series (max depth) is below 1e-6 and included in the expectation.
+// Level: alpha = 0.01 for the whole file, Sidak-split over all 73 z-tests (24 regions x 3 channels, and the
+// silhouette's coverage), so the file fails by chance with probability below 1% for a correct renderer at any
+// seed; seeds are fixed, so a pass is reproducible. Bias of the truncated series (max depth) is below 1e-6 and included in the expectation.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -30,7 +30,7 @@ Camera make_camera(Vec3 from, Vec3 to, float fov) {
   c.fov_y_degrees = fov;
   return c;
 }
-constexpr int kRegionTests = 72;  // 24 regions x 3 channels (Bonferroni-safe under dependence)
+constexpr int kRegionTests = 73;  // 24 regions x 3 channels + 1 (Bonferroni-safe under dependence)
 
 struct Case {
   std::string integrator;
@@ -102,6 +102,39 @@ TEST(IntegratorAnalytic, WhiteFurnace) {
     expect_region(test::region_mean(film, [&](int x, int y) { return footprint(*scene, x, y) == 0; }), 1.0,
                   c.integrator + " furnace background");
   }
+}
+
+TEST(IntegratorAnalytic, FurnaceSilhouetteFollowsPixelCoverage) {
+  // Box filter: a pixel's value is the mean over its whole square. In the furnace `bsdf` is exact per sample
+  // (0.8 on the sphere, 1 off it), so a silhouette pixel's mean is 1 - 0.2 c, with c the fraction of its square
+  // that sees the sphere (here by a 64 x 64 grid of rays per pixel: the region mean's expectation is off by well
+  // under the 1e-3 allowed); its samples are Bernoulli, so the film's variance estimate applies. Samples all through the pixel centre would give 0.8 or 1.
+  auto scene = furnace_scene();
+  const Film film = render_scene(*scene, "bsdf", SamplerType::Stratified, 256);
+  Camera cam = scene->camera;
+  cam.prepare(scene->settings.width, scene->settings.height);
+  double mean = 0, expected = 0, var = 0;
+  int n = 0;
+  for (int y = 0; y < scene->settings.height; ++y)
+    for (int x = 0; x < scene->settings.width; ++x) {
+      if (footprint(*scene, x, y) != -1) continue;
+      int hits = 0;
+      for (int k = 0; k < 64 * 64; ++k) {
+        const Ray r = cam.generate_ray({x + ((k % 64) + 0.5f) / 64, y + ((k / 64) + 0.5f) / 64});
+        const float b = dot(r.o, r.d), c = dot(r.o, r.o) - 1;
+        hits += b * b - c > 0;
+      }
+      expected += 1 - 0.2 * hits / (64.0 * 64);
+      mean += film.mean(x, y).x;
+      var += film.variance_of_mean(x, y).x;
+      ++n;
+    }
+  ASSERT_GT(n, 20);
+  const double sd = std::sqrt(var) / n;
+  mean /= n;
+  expected /= n;
+  EXPECT_LT(std::abs(mean - expected), test::sidak_z(kAlpha, kRegionTests) * sd + 1e-3)
+      << "silhouette mean " << mean << " expected " << expected << " sd " << sd;
 }
 
 // --- Glossy furnace ---------------------------------------------------------------------------------------------
