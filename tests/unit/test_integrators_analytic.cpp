@@ -8,7 +8,8 @@
 // Each check is a z-test of a region mean against the exact value, using the film's own variance estimate.
 // Level: alpha = 0.01 for the whole file, Sidak-split over all 73 z-tests (24 regions x 3 channels, and the
 // silhouette's coverage), so the file fails by chance with probability below 1% for a correct renderer at any
-// seed; seeds are fixed, so a pass is reproducible. Bias of the truncated series (max depth) is below 1e-6 and included in the expectation.
+// seed; seeds are fixed, so a pass is reproducible. Bias of the truncated series (max depth) is below 1e-6 and
+// included in the expectation.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -108,7 +109,8 @@ TEST(IntegratorAnalytic, FurnaceSilhouetteFollowsPixelCoverage) {
   // Box filter: a pixel's value is the mean over its whole square. In the furnace `bsdf` is exact per sample
   // (0.8 on the sphere, 1 off it), so a silhouette pixel's mean is 1 - 0.2 c, with c the fraction of its square
   // that sees the sphere (here by a 64 x 64 grid of rays per pixel: the region mean's expectation is off by well
-  // under the 1e-3 allowed); its samples are Bernoulli, so the film's variance estimate applies. Samples all through the pixel centre would give 0.8 or 1.
+  // under the 1e-3 allowed); its samples are Bernoulli, so the film's variance estimate applies. Samples all
+  // through the pixel centre would give 0.8 or 1.
   auto scene = furnace_scene();
   const Film film = render_scene(*scene, "bsdf", SamplerType::Stratified, 256);
   Camera cam = scene->camera;
