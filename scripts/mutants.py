@@ -18,8 +18,8 @@ Not part of scripts/test.sh: the whole list takes about 80 minutes on 2 cores. d
 """
 import argparse, filecmp, json, os, pathlib, re, shutil, signal, subprocess, sys, time
 
-# Tests of the command line's input handling, outputs, interruption and speed: minutes of run time that no formula
-# mutant can fail (the regression renders, warptest and every library test still run).
+# Tests of the command line's input handling, outputs, interruption, speed, diff and compare: minutes of run time
+# spent on what surrounds the formulas (the regression renders, warptest and every library test still run).
 DEFAULT_EXCLUDE = "cli_malformed|cli_outputs|cli_interrupt|cli_prefetch|cli_bench|cli_diff|cli_compare"
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
