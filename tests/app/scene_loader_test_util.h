@@ -22,13 +22,24 @@ inline const std::string kAssets = LUMIS_SHARED_ASSETS;
 inline const std::string kBoxGlb = kAssets + "/gltf/Box/glTF-Binary/Box.glb";
 
 // One folder per test case, so that ctest may run the cases in parallel.
-inline fs::path test_dir() {
+inline fs::path test_dir_path() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() /
-                       ("lumis_scene_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+  return fs::temp_directory_path() /
+         ("lumis_scene_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+}
+
+inline fs::path test_dir() {
+  const fs::path dir = test_dir_path();
   fs::create_directories(dir);
   return dir;
 }
+
+/// The fixture of the loader tests: removes the test case's folder when it ends, so that a run leaves nothing in
+/// the temporary folder (scripts/test.sh fails a stage whose tests leave files there).
+class LoaderTest : public ::testing::Test {
+ protected:
+  void TearDown() override { fs::remove_all(test_dir_path()); }
+};
 
 inline std::string write_file(const std::string& name, const std::string& text) {
   const fs::path p = test_dir() / name;

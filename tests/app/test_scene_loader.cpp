@@ -13,6 +13,7 @@ namespace lumis {
 namespace {
 
 using namespace scene_test;
+using SceneLoader = LoaderTest;
 
 const std::string kExample = R"({
   "camera":    {"type": "perspective", "from": [0,1,4], "to": [0,1,0], "up": [0,1,0], "fov": 40},
@@ -34,7 +35,7 @@ std::string example_with_box() { return std::regex_replace(kExample, std::regex(
 // ---------------------------------------------------------------------------------------------------------------
 // Scenes that load.
 
-TEST(SceneLoader, DocumentedExampleLoadsAndAssembles) {
+TEST_F(SceneLoader, DocumentedExampleLoadsAndAssembles) {
   const auto scene = load_scene(write_scene(example_with_box()));
   EXPECT_EQ(scene->settings.integrator, "nee_mis");
   EXPECT_EQ(scene->settings.spp, 64u);
@@ -71,7 +72,7 @@ TEST(SceneLoader, DocumentedExampleLoadsAndAssembles) {
   EXPECT_LT(n.y, 0);
 }
 
-TEST(SceneLoader, EveryShippedSceneLoads) {
+TEST_F(SceneLoader, EveryShippedSceneLoads) {
   int count = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(LUMIS_SOURCE_DIR) / "scenes")) {
     if (entry.path().extension() != ".json") continue;
@@ -86,7 +87,7 @@ TEST(SceneLoader, EveryShippedSceneLoads) {
   EXPECT_GE(count, 2);  // cornell-sphere.json and furnace.json at least
 }
 
-TEST(SceneLoader, DefaultSceneIsTheSpecifiedCornellBox) {
+TEST_F(SceneLoader, DefaultSceneIsTheSpecifiedCornellBox) {
   const auto scene = load_scene(std::string(LUMIS_SOURCE_DIR) + "/scenes/cornell-sphere.json");
   EXPECT_EQ(scene->settings.width, 512);
   EXPECT_EQ(scene->settings.height, 512);
@@ -104,7 +105,7 @@ TEST(SceneLoader, DefaultSceneIsTheSpecifiedCornellBox) {
   }
 }
 
-TEST(SceneLoader, MissingSectionsTakeRenderSettingsDefaultsAndAFramingCamera) {
+TEST_F(SceneLoader, MissingSectionsTakeRenderSettingsDefaultsAndAFramingCamera) {
   const auto scene = load_scene(write_scene(scene_with("")));
   const RenderSettings d;
   EXPECT_EQ(scene->settings.integrator, d.integrator);
@@ -122,7 +123,7 @@ TEST(SceneLoader, MissingSectionsTakeRenderSettingsDefaultsAndAFramingCamera) {
   EXPECT_GT(scene->camera.from.z, 0);
 }
 
-TEST(SceneLoader, RenderKeysAreRead) {
+TEST_F(SceneLoader, RenderKeysAreRead) {
   const auto scene = load_scene(write_scene(scene_with(
       R"("render": {"integrator": "mis", "spp": 16, "max_depth": 3, "rr_depth": 0, "sampler": "sobol", "seed": 7,
                     "light_selection": "power", "mis_heuristic": "power", "uniform_measure": "solid_angle",
@@ -146,7 +147,7 @@ TEST(SceneLoader, RenderKeysAreRead) {
 
 // The documented transform conventions: scale, then rotate X, Y, Z (degrees, right-handed), then translate; a
 // "matrix" is row-major with the translation in the last column.
-TEST(SceneLoader, TransformConventions) {
+TEST_F(SceneLoader, TransformConventions) {
   auto mesh_vertex = [](const std::string& transform) {
     const auto scene = load_scene(write_scene(
         R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [{"type": "mesh", "material": "m",
@@ -164,7 +165,7 @@ TEST(SceneLoader, TransformConventions) {
   EXPECT_TRUE(near(p[0], {6, 0, 0}));
 }
 
-TEST(SceneLoader, MirroringTransformKeepsTheFrontFace) {
+TEST_F(SceneLoader, MirroringTransformKeepsTheFrontFace) {
   const auto scene = load_scene(write_scene(
       R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [{"type": "mesh", "material": "m",
           "positions": [[0,0,0], [1,0,0], [0,1,0]], "normals": [[0,0,1], [0,0,1], [0,0,1]], "indices": [0,1,2],
@@ -176,7 +177,7 @@ TEST(SceneLoader, MirroringTransformKeepsTheFrontFace) {
   EXPECT_GT(dot(ng, m.normals[0]), 0);
 }
 
-TEST(SceneLoader, EmissionMakesShapesLightsThatStayGeometry) {
+TEST_F(SceneLoader, EmissionMakesShapesLightsThatStayGeometry) {
   const auto scene = load_scene(write_scene(
       R"({"materials": {"m": {"type": "diffuse"}, "glow": {"type": "pbr", "emissive": [2, 2, 2]}},
           "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m", "emission": [3,3,3]},
@@ -191,7 +192,7 @@ TEST(SceneLoader, EmissionMakesShapesLightsThatStayGeometry) {
   EXPECT_EQ(scene->geometry.mesh(2).light, 2);
 }
 
-TEST(SceneLoader, FileTypeIsTheExtensionInAnyCase) {
+TEST_F(SceneLoader, FileTypeIsTheExtensionInAnyCase) {
   const std::string json = write_file("UPPER.JSON", example_with_box());
   EXPECT_EQ(load_scene(json)->settings.spp, 64);
   const std::string glb = (test_dir() / "BOX.GLB").string();
@@ -207,7 +208,7 @@ TEST(SceneLoader, FileTypeIsTheExtensionInAnyCase) {
   EXPECT_EQ(scene->geometry.geometry_count(), 1u);
 }
 
-TEST(SceneLoader, GltfFileAloneGetsFramingCameraAndWhiteSky) {
+TEST_F(SceneLoader, GltfFileAloneGetsFramingCameraAndWhiteSky) {
   const auto scene = load_scene(kBoxGlb);
   ASSERT_GE(scene->environment, 0);
   EXPECT_TRUE(scene->lights[scene->environment]->is_environment());
@@ -217,7 +218,7 @@ TEST(SceneLoader, GltfFileAloneGetsFramingCameraAndWhiteSky) {
   EXPECT_GT(length(scene->camera.from), std::sqrt(0.75f));
 }
 
-TEST(SceneLoader, GltfEmissiveMeshesBecomeMeshLightsAndNoSkyIsAdded) {
+TEST_F(SceneLoader, GltfEmissiveMeshesBecomeMeshLightsAndNoSkyIsAdded) {
   const auto scene = load_scene(kAssets + "/gltf/EmissiveStrengthTest/glTF-Binary/EmissiveStrengthTest.glb");
   EXPECT_EQ(scene->environment, -1);
   ASSERT_GT(scene->lights.size(), 0u);
@@ -230,7 +231,7 @@ TEST(SceneLoader, GltfEmissiveMeshesBecomeMeshLightsAndNoSkyIsAdded) {
   EXPECT_EQ(lit, scene->lights.size());
 }
 
-TEST(SceneLoader, EnvironmentMapAndTexturesLoad) {
+TEST_F(SceneLoader, EnvironmentMapAndTexturesLoad) {
   Image sky(8, 4, {"R", "G", "B"});
   for (float& v : sky.data) v = 0.5f;
   write_image((test_dir() / "sky.exr").string(), sky);

@@ -15,6 +15,7 @@ namespace lumis {
 namespace {
 
 using namespace scene_test;
+using SceneLoaderErrors = LoaderTest;
 
 // The one-sphere scene with material "m" defined as `material`.
 std::string scene_with_material(const std::string& material) {
@@ -23,7 +24,7 @@ std::string scene_with_material(const std::string& material) {
 
 // Syntax (line:column).
 
-TEST(SceneLoaderErrors, SyntaxErrorGivesLineAndColumn) {
+TEST_F(SceneLoaderErrors, SyntaxErrorGivesLineAndColumn) {
   // Line 2 lacks its comma; the parser gives up at the last character of the string "render" on line 3 (the
   // same place nlohmann's own message names).
   const SceneError e = load_error("{\n  \"film\": {\"width\": 5}\n  \"render\": {}\n}");
@@ -32,29 +33,29 @@ TEST(SceneLoaderErrors, SyntaxErrorGivesLineAndColumn) {
   EXPECT_NE(e.detail.find("expected '}'"), std::string::npos) << e.what();
 }
 
-TEST(SceneLoaderErrors, TruncatedFileGivesPositionAtTheEnd) {
+TEST_F(SceneLoaderErrors, TruncatedFileGivesPositionAtTheEnd) {
   const SceneError e = load_error("{\n  \"film\": {\"width\": 5}");
   EXPECT_EQ(e.location, "2:23") << e.what();
   EXPECT_NE(e.detail.find("end of input"), std::string::npos) << e.what();
 }
 
-TEST(SceneLoaderErrors, OverflowingNumberIsRejectedWithPosition) {
+TEST_F(SceneLoaderErrors, OverflowingNumberIsRejectedWithPosition) {
   const SceneError e = load_error("{\"film\": {\"width\": 1e999}}");
   EXPECT_EQ(e.location, "1:24") << e.what();  // the last digit of 1e999
   EXPECT_NE(e.detail.find("number overflow"), std::string::npos) << e.what();
 }
 
-TEST(SceneLoaderErrors, DuplicateKey) {
+TEST_F(SceneLoaderErrors, DuplicateKey) {
   EXPECT_SCENE_ERROR(scene_with(R"("film": {"width": 64, "width": 32})"), "/film/width", "duplicate key");
 }
 
 // Errors: structure, types and unknown keys.
 
-TEST(SceneLoaderErrors, TopLevelMustBeAnObject) {
+TEST_F(SceneLoaderErrors, TopLevelMustBeAnObject) {
   EXPECT_SCENE_ERROR("[1, 2]", "", "expected an object, found an array of 2 elements");
 }
 
-TEST(SceneLoaderErrors, UnknownTopLevelKeyListsValidKeys) {
+TEST_F(SceneLoaderErrors, UnknownTopLevelKeyListsValidKeys) {
   const SceneError e = load_error(R"({"shape": []})");
   EXPECT_EQ(e.location, "/shape");
   EXPECT_NE(e.detail.find("unknown key \"shape\" (did you mean \"shapes\"?)"), std::string::npos) << e.what();
@@ -62,140 +63,140 @@ TEST(SceneLoaderErrors, UnknownTopLevelKeyListsValidKeys) {
       << e.what();
 }
 
-TEST(SceneLoaderErrors, UnknownShapeKey) {
+TEST_F(SceneLoaderErrors, UnknownShapeKey) {
   EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radus": 1, "material": "m")"), "/shapes/0/radus",
                      "did you mean \"radius\"");
 }
 
-TEST(SceneLoaderErrors, UnsupportedVersion) {
+TEST_F(SceneLoaderErrors, UnsupportedVersion) {
   EXPECT_SCENE_ERROR(scene_with(R"("version": 2)"), "/version", "expected 1, found the number 2");
 }
 
-TEST(SceneLoaderErrors, WrongTypeForWidth) {
+TEST_F(SceneLoaderErrors, WrongTypeForWidth) {
   EXPECT_SCENE_ERROR(scene_with(R"("film": {"width": "512"})"), "/film/width",
                      "expected an integer >= 1, found the string \"512\"");
 }
 
-TEST(SceneLoaderErrors, ZeroWidth) {
+TEST_F(SceneLoaderErrors, ZeroWidth) {
   EXPECT_SCENE_ERROR(scene_with(R"("film": {"width": 0})"), "/film/width", "found the number 0");
 }
 
-TEST(SceneLoaderErrors, AbsurdResolution) {
+TEST_F(SceneLoaderErrors, AbsurdResolution) {
   EXPECT_SCENE_ERROR(scene_with(R"("film": {"width": 512, "height": 100000})"), "/film/height",
                      "absurd resolution 512 x 100000: at most 16384 pixels per side");
 }
 
-TEST(SceneLoaderErrors, ZeroSpp) {
+TEST_F(SceneLoaderErrors, ZeroSpp) {
   EXPECT_SCENE_ERROR(scene_with(R"("render": {"spp": 0})"), "/render/spp", "expected an integer in [1, 1073741824]");
 }
 
-TEST(SceneLoaderErrors, FractionalSpp) {
+TEST_F(SceneLoaderErrors, FractionalSpp) {
   EXPECT_SCENE_ERROR(scene_with(R"("render": {"spp": 1.5})"), "/render/spp", "found the number 1.5");
 }
 
-TEST(SceneLoaderErrors, UnknownIntegratorListsValidOnes) {
+TEST_F(SceneLoaderErrors, UnknownIntegratorListsValidOnes) {
   EXPECT_SCENE_ERROR(scene_with(R"("render": {"integrator": "path"})"), "/render/integrator",
                      "unknown integrator \"path\"; valid: uniform, bsdf, light, mis, nee_mis");
 }
 
-TEST(SceneLoaderErrors, UnknownSamplerListsValidOnes) {
+TEST_F(SceneLoaderErrors, UnknownSamplerListsValidOnes) {
   EXPECT_SCENE_ERROR(scene_with(R"("render": {"sampler": "sobel"})"), "/render/sampler",
                      "unknown sampler \"sobel\" (did you mean \"sobol\"?); valid: independent, stratified, sobol");
 }
 
-TEST(SceneLoaderErrors, UnknownLightSelectionListsValidOnes) {
+TEST_F(SceneLoaderErrors, UnknownLightSelectionListsValidOnes) {
   EXPECT_SCENE_ERROR(scene_with(R"("render": {"light_selection": "best"})"), "/render/light_selection",
                      "valid: uniform, power, importance");
 }
 
-TEST(SceneLoaderErrors, ProbabilityOutOfRange) {
+TEST_F(SceneLoaderErrors, ProbabilityOutOfRange) {
   EXPECT_SCENE_ERROR(scene_with(R"("render": {"mis_light_probability": 1.5})"), "/render/mis_light_probability",
                      "expected a number in [0, 1], found the number 1.5");
 }
 
 // Errors: cameras.
 
-TEST(SceneLoaderErrors, CameraWithoutDirection) {
+TEST_F(SceneLoaderErrors, CameraWithoutDirection) {
   EXPECT_SCENE_ERROR(scene_with(R"("camera": {"from": [0,0,5], "to": [0,0,5]})"), "/camera/to", "must differ");
 }
 
-TEST(SceneLoaderErrors, FieldOfViewOutOfRange) {
+TEST_F(SceneLoaderErrors, FieldOfViewOutOfRange) {
   EXPECT_SCENE_ERROR(scene_with(R"("camera": {"from": [0,0,5], "to": [0,0,0], "fov": 180})"), "/camera/fov",
                      "strictly between 0 and 180");
 }
 
 // Errors: materials.
 
-TEST(SceneLoaderErrors, UnknownMaterialTypeListsValidOnes) {
+TEST_F(SceneLoaderErrors, UnknownMaterialTypeListsValidOnes) {
   EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "glass"})"),
                      "/materials/m/type", "unknown material type \"glass\"; valid: diffuse, pbr, ggx");
 }
 
-TEST(SceneLoaderErrors, AlbedoAboveOne) {
+TEST_F(SceneLoaderErrors, AlbedoAboveOne) {
   EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "diffuse", "albedo": [0.5, 1.5, 0.5]})"),
                      "/materials/m/albedo/1", "expected a number in [0, 1], found the number 1.5");
 }
 
-TEST(SceneLoaderErrors, ColorWithTwoComponents) {
+TEST_F(SceneLoaderErrors, ColorWithTwoComponents) {
   EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "diffuse", "albedo": [0.5, 0.5]})"),
                      "/materials/m/albedo", "expected an array of 3 numbers, found an array of 2 elements");
 }
 
-TEST(SceneLoaderErrors, MisspelledPbrKey) {
+TEST_F(SceneLoaderErrors, MisspelledPbrKey) {
   EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "pbr", "roughnes": 0.5})"),
                      "/materials/m/roughnes", "did you mean \"roughness\"");
 }
 
-TEST(SceneLoaderErrors, MissingTextureFile) {
+TEST_F(SceneLoaderErrors, MissingTextureFile) {
   EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "diffuse", "texture": "no-such.png"})"),
                      "/materials/m/texture", "file not found");
 }
 
 // Errors: shapes.
 
-TEST(SceneLoaderErrors, NegativeRadius) {
+TEST_F(SceneLoaderErrors, NegativeRadius) {
   EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": -1, "material": "m")"), "/shapes/0/radius",
                      "found the number -1");
 }
 
-TEST(SceneLoaderErrors, RadiusBeyondFloatRange) {
+TEST_F(SceneLoaderErrors, RadiusBeyondFloatRange) {
   EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1e39, "material": "m")"), "/shapes/0/radius",
                      "a finite number within float range");
 }
 
-TEST(SceneLoaderErrors, UnknownMaterialReference) {
+TEST_F(SceneLoaderErrors, UnknownMaterialReference) {
   EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1, "material": "gol")"), "/shapes/0/material",
                      "unknown material \"gol\"; defined materials: m");
 }
 
-TEST(SceneLoaderErrors, ShapeWithoutMaterial) {
+TEST_F(SceneLoaderErrors, ShapeWithoutMaterial) {
   EXPECT_SCENE_ERROR(scene_with("", R"("center": [0,0,0], "radius": 1)"), "/shapes/0",
                      "missing required key \"material\"");
 }
 
-TEST(SceneLoaderErrors, UnknownShapeTypeListsValidOnes) {
+TEST_F(SceneLoaderErrors, UnknownShapeTypeListsValidOnes) {
   EXPECT_SCENE_ERROR(R"({"shapes": [{"type": "cube"}]})", "/shapes/0/type",
                      "unknown shape type \"cube\"; valid: sphere, quad, mesh, gltf");
 }
 
-TEST(SceneLoaderErrors, DegenerateQuad) {
+TEST_F(SceneLoaderErrors, DegenerateQuad) {
   EXPECT_SCENE_ERROR(R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [{"type": "quad", "origin": [0,0,0],
                          "edge_u": [1,0,0], "edge_v": [2,0,0], "material": "m"}]})",
                      "/shapes/0/edge_v", "not parallel");
 }
 
-TEST(SceneLoaderErrors, MeshIndexOutOfRange) {
+TEST_F(SceneLoaderErrors, MeshIndexOutOfRange) {
   EXPECT_SCENE_ERROR(R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [{"type": "mesh", "material": "m",
                          "positions": [[0,0,0], [1,0,0], [0,1,0]], "indices": [0, 1, 3]}]})",
                      "/shapes/0/indices/2", "expected an integer in [0, 2], found the number 3");
 }
 
-TEST(SceneLoaderErrors, MissingGltfFile) {
+TEST_F(SceneLoaderErrors, MissingGltfFile) {
   EXPECT_SCENE_ERROR(R"({"shapes": [{"type": "gltf", "file": "missing.glb"}]})", "/shapes/0/file",
                      "file not found");
 }
 
-TEST(SceneLoaderErrors, GltfFileMustBeAGltfOrGlbFile) {
+TEST_F(SceneLoaderErrors, GltfFileMustBeAGltfOrGlbFile) {
   write_file("ok.json", "{}");
   EXPECT_SCENE_ERROR(R"({"shapes": [{"type": "gltf", "file": "ok.json"}]})", "/shapes/0/file",
                      "expected a .gltf or .glb file, found \".json\"");
@@ -206,13 +207,13 @@ TEST(SceneLoaderErrors, GltfFileMustBeAGltfOrGlbFile) {
                      "is a folder, expected a file");
 }
 
-TEST(SceneLoaderErrors, TextureThatIsAFolder) {
+TEST_F(SceneLoaderErrors, TextureThatIsAFolder) {
   EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "diffuse", "texture": ".."})"), "/materials/m/texture",
                      "is a folder, expected a file");
 }
 
 // An error inside an included glTF file names the scene's shape as well as the file and its glTF path.
-TEST(SceneLoaderErrors, ErrorInsideAGltfFileNamesTheShape) {
+TEST_F(SceneLoaderErrors, ErrorInsideAGltfFileNamesTheShape) {
   const std::string gltf = write_file("Model.GLTF", R"({"asset": {"version": "1.0"}})");
   // The extension in any case.
   const SceneError e = load_error(R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [
@@ -221,13 +222,13 @@ TEST(SceneLoaderErrors, ErrorInsideAGltfFileNamesTheShape) {
   EXPECT_EQ(e.detail, "in " + gltf + ":asset.version: glTF version \"1.0\": lumis reads glTF 2.0 (major version 2)");
 }
 
-TEST(SceneLoaderErrors, GltfMaterialNameNotInFile) {
+TEST_F(SceneLoaderErrors, GltfMaterialNameNotInFile) {
   EXPECT_SCENE_ERROR(R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [{"type": "gltf", "file": ")" + kBoxGlb +
                          R"(", "materials": {"Blue": "m"}}]})",
                      "/shapes/0/materials/Blue", "no material named \"Blue\"; its materials: \"Red\"");
 }
 
-TEST(SceneLoaderErrors, MatrixTogetherWithTranslate) {
+TEST_F(SceneLoaderErrors, MatrixTogetherWithTranslate) {
   EXPECT_SCENE_ERROR(R"({"shapes": [{"type": "gltf", "file": ")" + kBoxGlb +
                          R"(", "transform": {"translate": [1,0,0], "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}}]})",
                      "/shapes/0/transform/translate", "\"matrix\" replaces translate/rotate/scale");
@@ -235,34 +236,34 @@ TEST(SceneLoaderErrors, MatrixTogetherWithTranslate) {
 
 // Errors: lights.
 
-TEST(SceneLoaderErrors, UnknownLightTypeListsValidOnes) {
+TEST_F(SceneLoaderErrors, UnknownLightTypeListsValidOnes) {
   EXPECT_SCENE_ERROR(R"({"lights": [{"type": "point"}]})", "/lights/0/type",
                      "unknown light type \"point\"; valid: sphere, quad, environment");
 }
 
-TEST(SceneLoaderErrors, BlackRadiance) {
+TEST_F(SceneLoaderErrors, BlackRadiance) {
   EXPECT_SCENE_ERROR(R"({"lights": [{"type": "sphere", "center": [0,0,0], "radius": 1, "radiance": [0,0,0]}]})",
                      "/lights/0/radiance", "at least one positive component");
 }
 
-TEST(SceneLoaderErrors, UnknownQuadSamplingListsValidOnes) {
+TEST_F(SceneLoaderErrors, UnknownQuadSamplingListsValidOnes) {
   EXPECT_SCENE_ERROR(R"({"lights": [{"type": "quad", "origin": [0,0,0], "edge_u": [1,0,0], "edge_v": [0,1,0],
                          "radiance": [1,1,1], "sampling": "solid_angle"}]})",
                      "/lights/0/sampling", "valid: spherical_rectangle, area");
 }
 
-TEST(SceneLoaderErrors, SecondEnvironment) {
+TEST_F(SceneLoaderErrors, SecondEnvironment) {
   EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "radiance": [1,1,1]},
                                     {"type": "environment", "radiance": [1,1,1]}]})",
                      "/lights/1", "only one environment light");
 }
 
-TEST(SceneLoaderErrors, EnvironmentWithRadianceAndFile) {
+TEST_F(SceneLoaderErrors, EnvironmentWithRadianceAndFile) {
   EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "radiance": [1,1,1], "file": "sky.exr"}]})", "/lights/0",
                      "exactly one of \"radiance\"");
 }
 
-TEST(SceneLoaderErrors, EnvironmentMapMustBeLinear) {
+TEST_F(SceneLoaderErrors, EnvironmentMapMustBeLinear) {
   const std::string png = kAssets + "/gltf/BoxWithSpaces/glTF/glTF Logo With Spaces.png";
   EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "file": ")" + png + R"("}]})", "/lights/0/file",
                      "must be a linear .exr or .hdr file");
@@ -278,7 +279,7 @@ std::string exr_with_texel(float bad) {
   return path;
 }
 
-TEST(SceneLoaderErrors, EnvironmentMapTexelsMustBeFiniteAndNonNegative) {
+TEST_F(SceneLoaderErrors, EnvironmentMapTexelsMustBeFiniteAndNonNegative) {
   for (float bad : {-1.0f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     const std::string map = exr_with_texel(bad);
     EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "file": ")" + map + R"("}]})", "/lights/0/file",
@@ -286,7 +287,7 @@ TEST(SceneLoaderErrors, EnvironmentMapTexelsMustBeFiniteAndNonNegative) {
   }
 }
 
-TEST(SceneLoaderErrors, ColourTextureTexelsMustBeFiniteAndNonNegative) {
+TEST_F(SceneLoaderErrors, ColourTextureTexelsMustBeFiniteAndNonNegative) {
   for (float bad : {-1.0f, std::numeric_limits<float>::quiet_NaN()}) {
     const std::string map = exr_with_texel(bad);
     for (const char* key : {"base_color_texture", "emissive_texture"})
@@ -300,16 +301,16 @@ TEST(SceneLoaderErrors, ColourTextureTexelsMustBeFiniteAndNonNegative) {
 
 // Errors: whole files.
 
-TEST(SceneLoaderErrors, EmptyScene) {
+TEST_F(SceneLoaderErrors, EmptyScene) {
   EXPECT_SCENE_ERROR(R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [], "lights": []})", "",
                      "scene is empty");
 }
 
-TEST(SceneLoaderErrors, MalformedCameraIsNamedBeforeAnEmptyScene) {
+TEST_F(SceneLoaderErrors, MalformedCameraIsNamedBeforeAnEmptyScene) {
   EXPECT_SCENE_ERROR(R"({"camera": 3})", "/camera", "expected an object");
 }
 
-TEST(SceneLoaderErrors, MissingSceneFile) {
+TEST_F(SceneLoaderErrors, MissingSceneFile) {
   const std::string path = (test_dir() / "absent.json").string();
   try {
     load_scene(path);
@@ -322,7 +323,7 @@ TEST(SceneLoaderErrors, MissingSceneFile) {
 }
 
 // A pipe or a device would block or stream forever: refused before anything reads it, as a scene and as a texture.
-TEST(SceneLoaderErrors, PipesAndDevicesAreRefused) {
+TEST_F(SceneLoaderErrors, PipesAndDevicesAreRefused) {
   const std::string pipe = (test_dir() / "pipe.json").string();
   std::filesystem::remove(pipe);  // test folders are named by process id and not always removed
   ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
@@ -340,7 +341,7 @@ TEST(SceneLoaderErrors, PipesAndDevicesAreRefused) {
                      "/materials/m/texture", "is not a regular file (a pipe, device or socket)");
 }
 
-TEST(SceneLoaderErrors, UnknownFileExtension) {
+TEST_F(SceneLoaderErrors, UnknownFileExtension) {
   const std::string path = write_file("scene.obj", "v 0 0 0\n");
   try {
     load_scene(path);
