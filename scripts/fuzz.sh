@@ -32,12 +32,16 @@ else
   echo "fuzz: $assets/gltf not found; glTF seeds are the malformed-input cases only" >&2
 fi
 
+# The fuzzers' scratch files (fuzz_json_scene writes its input to $TMPDIR/fuzz.json) go to a folder removed on exit.
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
 status=0
 run() {
   local target=$1 seeds=$2
   echo "fuzz: $target for ${seconds}s ($(ls "$seeds" | wc -l) seeds)" >&2
   # -timeout: one input taking 10 s is a hang; -rss_limit_mb: the loader must refuse absurd allocations.
-  if ! (cd "$build" && LSAN_OPTIONS=suppressions=$root/scripts/lsan.supp:print_suppressions=0 TMPDIR=$(mktemp -d) "$build/tests/fuzz/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2560 \
+  if ! (cd "$build" && LSAN_OPTIONS=suppressions=$root/scripts/lsan.supp:print_suppressions=0 TMPDIR=$scratch \
+        "$build/tests/fuzz/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2560 \
         -max_len=65536 -dict="$root/tests/fuzz/scene.dict" -print_final_stats=1 \
         -artifact_prefix="$build/artifacts/$target-" "corpus/$target" "$seeds" 2>"$build/$target.log"); then
     status=1

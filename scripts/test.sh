@@ -6,6 +6,7 @@
 #   tsan     build the renderer with ThreadSanitizer (-DLUMIS_TSAN=ON) in build-tsan/ and render the default scene
 #            small on 2 threads; any report fails (suppressions: scripts/tsan.supp)
 #   fuzz     build the libFuzzer targets (scripts/fuzz.sh) and run each for FUZZ_SECONDS (default 20)
+# ctest and the fuzzers run with TMPDIR set to a fresh folder, and a stage fails when anything is left there.
 # Every stage runs even when an earlier one failed; the script fails when any stage fails. A stage is skipped, with
 # a message, only when its tool is missing (no clang for fuzz). Stage times are printed at the end. The last line
 # is the Release ctest summary when everything passed, else "N passed, M failed" over all tests and stages.
@@ -39,13 +40,37 @@ ctest_counts() {
   failed=$((failed + bad))
 }
 
+# fresh_temp STAGE: make and print a folder for the stage's TMPDIR. left_in_temp STAGE FOLDER: fail (status 1,
+# with a message) when the stage left anything there: tests and tools clean up after themselves.
+fresh_temp() { mkdir -p "$log/temp-$1" && echo "$log/temp-$1"; }
+left_in_temp() {
+  [ -z "$(ls -A "$2")" ] && return 0
+  echo "test: the $1 stage left $(ls -A "$2" | wc -l) entries in TMPDIR, such as:" \
+    "$(ls -A "$2" | head -3 | tr '\n' ' ')" >&2
+  return 1
+}
+
+# run_ctest STAGE ARGS...: ctest ARGS with TMPDIR set to a fresh folder; anything left there fails the stage.
+run_ctest() {
+  local stage=$1; shift
+  local tmp
+  tmp=$(fresh_temp "$stage")
+  TMPDIR=$tmp ctest "$@" 2>&1 | tee "$log/$stage.txt"
+  local code=${PIPESTATUS[0]}
+  ctest_counts "$log/$stage.txt"
+  if ! left_in_temp "$stage" "$tmp"; then
+    failed=$((failed + 1))
+    code=1
+  fi
+  return "$code"
+}
+
 stage_release() {
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null &&
     cmake --build "$build" -j "$jobs" || return 1
-  ctest --test-dir "$build" --output-on-failure -j "$jobs" 2>&1 | tee "$log/release.txt"
-  local code=${PIPESTATUS[0]}
+  run_ctest release --test-dir "$build" --output-on-failure -j "$jobs"
+  local code=$?
   release_summary=$(grep -E "tests passed, [0-9]+ tests? failed out of" "$log/release.txt" | tail -1)
-  ctest_counts "$log/release.txt"
   return "$code"
 }
 
@@ -60,10 +85,7 @@ stage_asan() {
     LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$(pwd)/scripts/lsan.supp:print_suppressions=0} \
     UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
     LUMIS_REGRESSION_SPP_SCALE=${LUMIS_REGRESSION_SPP_SCALE:-0.25} \
-    ctest --test-dir build-asan --output-on-failure -j "$jobs" -E "$asan_exclude" 2>&1 | tee "$log/asan.txt"
-  local code=${PIPESTATUS[0]}
-  ctest_counts "$log/asan.txt"
-  return "$code"
+    run_ctest asan --test-dir build-asan --output-on-failure -j "$jobs" -E "$asan_exclude"
 }
 
 stage_tsan() {
@@ -89,8 +111,11 @@ stage_fuzz() {
     result[fuzz]=skipped
     return 0
   fi
-  scripts/fuzz.sh "${FUZZ_SECONDS:-20}" 2>&1 | tee "$log/fuzz.txt"
+  local tmp
+  tmp=$(fresh_temp fuzz)
+  TMPDIR=$tmp scripts/fuzz.sh "${FUZZ_SECONDS:-20}" 2>&1 | tee "$log/fuzz.txt"
   local code=${PIPESTATUS[0]}
+  left_in_temp fuzz "$tmp" || code=1
   if [ "$code" = 0 ]; then passed=$((passed + 2)); else failed=$((failed + 1)); fi
   return "$code"
 }

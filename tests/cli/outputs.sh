@@ -23,7 +23,7 @@ quick() {  # quick CODE CMD...: as expect, within 20 s (rendering first would ta
 }
 quick 2 "$LUMIS" "${LONG[@]}" -o "$T/no-such-folder/out.png"
 has "lumis: $T/no-such-folder/out.png: the folder $T/no-such-folder does not exist"
-grep -q "tmp-" "$T/err" && fail "the message names a temporary file: $(cat "$T/err")"
+grep -qF ".tmp-" "$T/err" && fail "the message names a temporary file: $(cat "$T/err")"
 mkdir "$T/dir"
 quick 2 "$LUMIS" "${LONG[@]}" -o "$T/dir"
 has "$T/dir: is a folder; give an image file name"
