@@ -1,7 +1,7 @@
 // Geometry's ray queries: the 16-ray packet queries (camera rays, shadow rays) and the batched one-by-one query
 // (bounce rays) against the single-ray ones, on a scene with a triangle mesh and spheres (hits, misses, partial
 // packets, inactive lanes, an invalid ray), and alpha-masked surfaces under both; the branch-free rounding of ray
-// origins against next_float_up / next_float_down.
+// origins against next_float_up / next_float_down; the vertex attributes a hit blends by its barycentrics.
 // Deterministic: no statistics.
 #include <gtest/gtest.h>
 
@@ -329,6 +329,54 @@ TEST(Geometry, TinyTrianglesHitWhereTheRayMeetsThem) {
       ASSERT_TRUE(found_packet[i] && found_each[i]) << s << " " << i;
       for (const Hit* h : {&single, &packet[i], &each[i]})
         EXPECT_LT(length(h->p - targets[i]), 1e-5f * s) << "scale " << s << ", ray " << i;
+    }
+  }
+}
+
+
+// Vertex attributes at a hit are the barycentric blend of the triangle's three vertices': the shading normal
+// (normalised), the tangent, both uv sets and the colour, through every query kind. The hit points are not
+// symmetric in the barycentrics, so swapping two weights (or two vertices) moves every attribute.
+TEST(Geometry, HitBlendsVertexAttributesByBarycentrics) {
+  Geometry g;
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};  // geometric normal +z
+  m.indices = {0, 1, 2};
+  m.normals = {normalize(Vec3{0.3f, 0, 1}), normalize(Vec3{0, -0.4f, 1}), normalize(Vec3{-0.2f, 0.1f, 1})};
+  m.tangents = {{1, 0, -0.3f, 1}, {1, 0.2f, 0, 1}, {0.9f, -0.1f, 0.2f, 1}};
+  m.uv0 = {{0.1f, 0.9f}, {0.7f, 0.2f}, {0.4f, 0.5f}};
+  m.uv1 = {{2, 3}, {-1, 0.5f}, {0.25f, -2}};
+  m.colors = {{1, 0, 0, 1}, {0, 1, 0, 0.5f}, {0, 0, 1, 0.25f}};
+  m.material = 0;
+  g.add_mesh(m);
+  g.commit();
+  const Vec2 bary[] = {{0.2f, 0.5f}, {0.6f, 0.1f}, {0.05f, 0.8f}, {0.3f, 0.3f}};  // (b1, b2) = the hit's (x, y)
+  Ray rays[4];
+  for (int i = 0; i < 4; ++i) rays[i] = {{bary[i].x, bary[i].y, 1}, {0, 0, -1}, 0, INFINITY};
+  Hit packet[4], each[4];
+  bool found_packet[4], found_each[4];
+  g.intersect16(rays, 4, packet, found_packet);
+  const int lanes[4] = {0, 1, 2, 3};
+  g.intersect_each(rays, lanes, 4, each, found_each);
+  const auto blend = [](auto a0, auto a1, auto a2, Vec2 b) { return a0 * (1 - b.x - b.y) + a1 * b.x + a2 * b.y; };
+  for (int i = 0; i < 4; ++i) {
+    Hit single;
+    ASSERT_TRUE(g.intersect(rays[i], single)) << i;
+    ASSERT_TRUE(found_packet[i] && found_each[i]) << i;
+    const Vec2 b = bary[i];
+    const Vec3 ns = normalize(blend(m.normals[0], m.normals[1], m.normals[2], b));
+    const Vec3 t = blend(m.tangents[0].xyz(), m.tangents[1].xyz(), m.tangents[2].xyz(), b);
+    const Vec2 uv0 = blend(m.uv0[0], m.uv0[1], m.uv0[2], b), uv1 = blend(m.uv1[0], m.uv1[1], m.uv1[2], b);
+    const auto colour = [&](int k) { return blend(m.colors[0][k], m.colors[1][k], m.colors[2][k], b); };
+    for (const Hit* h : {&single, &packet[i], &each[i]}) {
+      EXPECT_LT(length(h->ns - ns), 1e-5f) << i;
+      EXPECT_LT(length(h->tangent.xyz() - t), 1e-5f) << i;
+      EXPECT_EQ(h->tangent.w, 1.0f) << i;
+      EXPECT_NEAR(h->uv[0].x, uv0.x, 1e-5f) << i;
+      EXPECT_NEAR(h->uv[0].y, uv0.y, 1e-5f) << i;
+      EXPECT_NEAR(h->uv[1].x, uv1.x, 1e-5f) << i;
+      EXPECT_NEAR(h->uv[1].y, uv1.y, 1e-5f) << i;
+      for (int k = 0; k < 4; ++k) EXPECT_NEAR(h->color[k], colour(k), 1e-5f) << i << " channel " << k;
     }
   }
 }
