@@ -193,6 +193,32 @@ TEST(DiffZTest, ReferenceVarianceAloneAndZeroVariance) {
   EXPECT_FALSE(z_test(a, b).passed);
 }
 
+// The variance of a difference is the sum of both images' variances: a 1x1 image 0.04 above the reference, whose
+// own variance is 8e-4 against the reference's 1e-4, is 0.04 / 0.03 = 1.33 standard deviations off (p = 0.18) and
+// passes; without its variance channels it is 4 off (p = 6.3e-5, below the per-test alpha 0.0033) and fails.
+// Deterministic.
+TEST(DiffZTest, BothImagesVariancesAdd) {
+  Image b(1, 1, {"R", "G", "B", "variance.R", "variance.G", "variance.B"});
+  Image a = b;
+  for (int k = 0; k < 3; ++k) {
+    b.at(0, 0, k) = 0.5f;
+    b.at(0, 0, 3 + k) = 1e-4f;
+    a.at(0, 0, k) = k == 1 ? 0.54f : 0.5f;
+    a.at(0, 0, 3 + k) = 8e-4f;
+  }
+  const ZTestResult both = z_test(a, b);
+  EXPECT_TRUE(both.used_a_variance);
+  EXPECT_TRUE(both.passed) << both.min_p;
+  EXPECT_NEAR(both.min_p, std::erfc(0.04 / 0.03 / std::sqrt(2.0)), 1e-4);
+  EXPECT_EQ(both.worst_channel, 1);
+  Image plain = rgb_image(1, 1, {0.5f, 0.54f, 0.5f});
+  const ZTestResult alone = z_test(plain, b);
+  EXPECT_FALSE(alone.used_a_variance);
+  EXPECT_FALSE(alone.passed);
+  EXPECT_EQ(alone.rejected, 1u);
+  EXPECT_NEAR(alone.min_p, std::erfc(4 / std::sqrt(2.0)), 1e-6);
+}
+
 TEST(DiffPictures, HeatmapRampAndFont) {
   {  // ErrorMapAndColourBar
     const std::vector<float> e = abs_error_map(tiny_a(), tiny_b());
