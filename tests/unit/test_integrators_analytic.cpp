@@ -1,4 +1,4 @@
-// Every integrator variant against scenes with closed-form answers:
+// Every integrator variant (and `nee_mis` with the power heuristic) against scenes with closed-form answers:
 //  - white furnace: diffuse sphere (albedo 0.8) in a uniform environment (radiance 1): 0.8 on the sphere, 1 off it;
 //  - glossy furnace: the same with the two-lobe glTF BSDF, whose value (its directional albedo) has no closed form:
 //    every variant against the `bsdf` variant's image;
@@ -6,7 +6,7 @@
 //  - sphere light (radius r, radiance L, height h) over a diffuse plane (albedo rho), direct lighting only: the
 //    point straight below has radiance rho L (r/h)^2.
 // Each check is a z-test of a region mean against the exact value, using the film's own variance estimate.
-// Level: alpha = 0.01 for the whole file, Sidak-split over all 73 z-tests (24 regions x 3 channels, and the
+// Level: alpha = 0.01 for the whole file, Sidak-split over all 88 z-tests (29 regions x 3 channels, and the
 // silhouette's coverage), so the file fails by chance with probability below 1% for a correct renderer at any
 // seed; seeds are fixed, so a pass is reproducible. Bias of the truncated series (max depth) is below 1e-6 and
 // included in the expectation.
@@ -31,24 +31,31 @@ Camera make_camera(Vec3 from, Vec3 to, float fov) {
   c.fov_y_degrees = fov;
   return c;
 }
-constexpr int kRegionTests = 73;  // 24 regions x 3 channels + 1 (Bonferroni-safe under dependence)
+constexpr int kRegionTests = 88;  // 29 regions x 3 channels + 1 (Bonferroni-safe under dependence)
 
 struct Case {
   std::string integrator;
   SamplerType sampler;
+  MisHeuristic heuristic = MisHeuristic::Balance;
+  /// The variant's name, and the heuristic when it is not the lecture's balance heuristic.
+  std::string label() const { return heuristic == MisHeuristic::Power ? integrator + " (power)" : integrator; }
 };
 
+// Every variant, and `nee_mis` once more with the power heuristic (--mis-heuristic power).
 std::vector<Case> all_variants() {
   return {{"uniform", SamplerType::Independent},
           {"bsdf", SamplerType::Stratified},
           {"light", SamplerType::Sobol},
           {"mis", SamplerType::Independent},
-          {"nee_mis", SamplerType::Stratified}};
+          {"nee_mis", SamplerType::Stratified},
+          {"nee_mis", SamplerType::Independent, MisHeuristic::Power}};
 }
 
-Film render_scene(Scene& scene, const std::string& integrator, SamplerType sampler, uint32_t spp) {
+Film render_scene(Scene& scene, const std::string& integrator, SamplerType sampler, uint32_t spp,
+                  MisHeuristic heuristic = MisHeuristic::Balance) {
   scene.settings.integrator = integrator;
   scene.settings.sampler = sampler;
+  scene.settings.mis_heuristic = heuristic;
   return test::render_film(scene, spp).film;
 }
 
@@ -101,11 +108,11 @@ int footprint(const Scene& scene, int x, int y) {
 TEST(IntegratorAnalytic, WhiteFurnace) {
   auto scene = furnace_scene();
   for (const Case& c : all_variants()) {
-    const Film film = render_scene(*scene, c.integrator, c.sampler, 64);
+    const Film film = render_scene(*scene, c.integrator, c.sampler, 64, c.heuristic);
     expect_region(test::region_mean(film, [&](int x, int y) { return footprint(*scene, x, y) == 1; }), 0.8,
-                  c.integrator + " furnace sphere");
+                  c.label() + " furnace sphere");
     expect_region(test::region_mean(film, [&](int x, int y) { return footprint(*scene, x, y) == 0; }), 1.0,
-                  c.integrator + " furnace background");
+                  c.label() + " furnace background");
   }
 }
 
@@ -156,10 +163,10 @@ TEST(IntegratorAnalytic, GlossyFurnaceAgreement) {
   const double z_max = test::sidak_z(kAlpha, kRegionTests);
   for (const Case& c : all_variants()) {
     if (c.integrator == "bsdf") continue;
-    const test::RegionMean r = test::region_mean(render_scene(*scene, c.integrator, c.sampler, 64), on_sphere);
+    const test::RegionMean r = test::region_mean(render_scene(*scene, c.integrator, c.sampler, 64, c.heuristic), on_sphere);
     for (int k = 0; k < 3; ++k) {
       const double sd = std::sqrt(r.var[k] + ref.var[k]), err = std::abs(r.mean[k] - ref.mean[k]);
-      EXPECT_LT(err, z_max * sd) << c.integrator << " glossy furnace: mean " << r.mean[k] << " reference "
+      EXPECT_LT(err, z_max * sd) << c.label() << " glossy furnace: mean " << r.mean[k] << " reference "
                                  << ref.mean[k] << " sd " << sd << " z " << err / sd;
     }
   }
@@ -197,8 +204,8 @@ TEST(IntegratorAnalytic, ClosedEmittingSphere) {
   scene.settings.rr_depth = 3;
   scene.finalize();
   for (const Case& c : all_variants()) {
-    const Film film = render_scene(scene, c.integrator, c.sampler, 32);
-    expect_region(test::region_mean(film, [](int, int) { return true; }), 1.0, c.integrator + " closed sphere");
+    const Film film = render_scene(scene, c.integrator, c.sampler, 32, c.heuristic);
+    expect_region(test::region_mean(film, [](int, int) { return true; }), 1.0, c.label() + " closed sphere");
   }
 }
 
@@ -224,8 +231,10 @@ TEST(IntegratorAnalytic, SphereLightOverPlane) {
   scene.finalize();
   const double expected = rho * radiance.x * (r / h) * (r / h);
   for (const Case& c : all_variants()) {
-    const Film film = render_scene(scene, c.integrator, c.sampler, c.integrator == "uniform" ? 20000 : 4000);
-    expect_region(test::region_mean(film, [](int, int) { return true; }), expected, c.integrator + " plane below light");
+    const uint32_t spp = c.integrator == "uniform" ? 20000 : 4000;
+    const Film film = render_scene(scene, c.integrator, c.sampler, spp, c.heuristic);
+    expect_region(test::region_mean(film, [](int, int) { return true; }), expected,
+                  c.label() + " plane below light");
   }
 }
 
