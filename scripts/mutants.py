@@ -14,7 +14,7 @@ exactly once in its file is STALE (the code moved on), and one that does not com
 list needs an update. Exit status: 0 when every mutant without "survive" was killed, 1 otherwise, 2 when the
 unmutated copy does not build or pass its tests.
 
-Not part of scripts/test.sh: the whole list takes about 80 minutes on 2 cores. docs/testing.md has the last table.
+Not part of scripts/test.sh: the whole list takes about two hours on 2 cores. docs/testing.md has the results.
 """
 import argparse, filecmp, json, os, pathlib, re, shutil, signal, subprocess, sys, time
 
