@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 
@@ -142,6 +143,28 @@ TEST_F(ImageIoTest, RoundTrips) {
     const Image lin = read_image(png_path, true);
     EXPECT_NEAR(lin.at(0, 0, 0), srgb_to_linear(128 / 255.0f), 1e-6f);
     EXPECT_NEAR(lin.at(0, 0, 3), 128 / 255.0f, 1e-6f);  // alpha is never decoded
+  }
+  {  // SixteenBitPngDecodesColourNotAlpha (16-bit files take the float path, not the 8-bit lookup tables)
+    reset();
+    const std::string path = file("rgba16.png");
+    const float code = 32768 / 65535.0f;
+    {
+      const uint16_t px[4] = {32768, 32768, 32768, 32768};
+      auto out = OIIO::ImageOutput::create(path);
+      ASSERT_TRUE(out);
+      OIIO::ImageSpec spec(1, 1, 4, OIIO::TypeDesc::UINT16);
+      spec.alpha_channel = 3;
+      spec.attribute("oiio:UnassociatedAlpha", 1);
+      ASSERT_TRUE(out->open(path, spec));
+      ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, px));
+      out->close();
+    }
+    const Image raw = read_image(path);
+    ASSERT_EQ(raw.channels, 4);
+    EXPECT_NEAR(raw.at(0, 0, 0), code, 1e-6f);
+    const Image lin = read_image(path, true);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(lin.at(0, 0, c), srgb_to_linear(code), 1e-6f) << c;
+    EXPECT_NEAR(lin.at(0, 0, 3), code, 1e-6f);  // alpha is never decoded
   }
   {  // HdrKeepsRadianceAboveOne
     reset();
