@@ -298,6 +298,41 @@ TEST(Geometry, AlphaMaskedSurfaceIsSkippedBySingleAndPacketQueries) {
   EXPECT_FALSE(occluded[2]);
 }
 
+// The mask's alpha is the factor times the base colour texture's alpha at the hit's uv: a quad whose texture is
+// transparent (alpha 0) on its left half and opaque on its right is skipped on the left only, by single rays and
+// packets alike.
+TEST(Geometry, AlphaMaskReadsTheTexturesAlpha) {
+  Geometry g;
+  TriangleMesh front, back;
+  front.positions = {{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
+  front.indices = {0, 1, 2, 0, 2, 3};
+  front.uv0 = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};  // u = (x + 1) / 2
+  auto image = std::make_shared<Image>(2, 1, std::vector<std::string>{"R", "G", "B", "A"});
+  for (float& v : image->data) v = 1;
+  image->at(0, 0, 3) = 0;  // left texel transparent
+  Texture texture;
+  texture.image = image;
+  texture.nearest = true;
+  front.alpha = AlphaMask{0.5f, 1.0f, texture};
+  back.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  back.indices = {0, 1, 2, 0, 2, 3};
+  const uint32_t front_id = g.add_mesh(front), back_id = g.add_mesh(back);
+  g.commit();
+  Ray rays[16];
+  for (int i = 0; i < 16; ++i) rays[i] = {{-0.75f + 0.1f * i, 0.1f, 3}, {0, 0, -1}, 0, INFINITY};
+  Hit packed[16];
+  bool found[16];
+  g.intersect16(rays, 16, packed, found);
+  for (int i = 0; i < 16; ++i) {
+    const uint32_t expected = rays[i].o.x < 0 ? back_id : front_id;
+    Hit single;
+    ASSERT_TRUE(g.intersect(rays[i], single)) << i;
+    EXPECT_EQ(single.geom_id, expected) << "x = " << rays[i].o.x;
+    ASSERT_TRUE(found[i]) << i;
+    EXPECT_EQ(packed[i].geom_id, expected) << "x = " << rays[i].o.x;
+  }
+}
+
 // Hit points on tiny triangles: Embree's barycentrics go wrong when its triple products fall below 1e-18 (its
 // reciprocal clamps there; at 1e-10 units they were off by more than the triangle), so fill_hit recomputes them
 // from o + t d. Every query kind must put the hit where the ray meets the triangle, at any scale.
