@@ -118,6 +118,29 @@ TEST(Texture, TransformAppliesBeforeWrapping) {
   EXPECT_NEAR(tiled.sample({0.3f, 0.2f}).x, tiled.sample({0.8f, 0.7f}).x, 1e-4f);
 }
 
+// KHR_texture_transform's rotation turns the uvs counter-clockwise as the uv map is drawn (u right, v down):
+// u' = c u + s v, v' = -s u + c v, so +u turns toward -v. The GLSL listing in the extension's README reads the
+// other way in a v-up space. This direction is the README's wording, and by the discussion in glTF issue #1563 the
+// one Babylon.js, three.js and the sample model TextureTransformTest agree on (not rendered here). Offset and
+// scale around it: uv' = offset + R(scale * uv).
+TEST(Texture, TransformRotationDirection) {
+  TextureTransform t;
+  t.rotation = kPi / 2;
+  const Vec2 a = t.apply({0.25f, 0});
+  EXPECT_NEAR(a.x, 0.0f, 1e-6f);
+  EXPECT_NEAR(a.y, -0.25f, 1e-6f);
+  const Vec2 b = t.apply({0, 0.25f});
+  EXPECT_NEAR(b.x, 0.25f, 1e-6f);
+  EXPECT_NEAR(b.y, 0.0f, 1e-6f);
+  t.rotation = 0.392699f;  // the sample model's 22.5 degrees
+  t.scale = {2, 0.5f};
+  t.offset = {0.1f, 0.3f};
+  const float c = std::cos(0.392699f), s = std::sin(0.392699f);
+  const Vec2 d = t.apply({0.4f, 0.6f});
+  EXPECT_NEAR(d.x, 0.1f + c * 0.8f + s * 0.3f, 1e-6f);
+  EXPECT_NEAR(d.y, 0.3f - s * 0.8f + c * 0.3f, 1e-6f);
+}
+
 TEST(Texture, ImplicitChannels) {
   auto grey = std::make_shared<Image>(1, 1, std::vector<std::string>{"Y"});
   grey->at(0, 0, 0) = 0.25f;
