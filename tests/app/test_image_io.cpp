@@ -38,6 +38,17 @@ Image gradient(int w, int h, std::vector<std::string> names) {
   return img;
 }
 
+/// Writes a 1x1 RGBA PNG with straight alpha through OIIO directly (write_image writes only RGB); `type` is UINT8 or
+/// UINT16 and `px` holds four values of it. False when OIIO fails.
+bool write_rgba_png(const std::string& path, OIIO::TypeDesc type, const void* px) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) return false;
+  OIIO::ImageSpec spec(1, 1, 4, type);
+  spec.alpha_channel = 3;
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  return out->open(path, spec) && out->write_image(type, px) && out->close();
+}
+
 }  // namespace
 
 TEST(SrgbCurve, KnownValuesAndInverse) {
@@ -123,19 +134,10 @@ TEST_F(ImageIoTest, RoundTrips) {
     // Float files are linear: the flag changes nothing.
     EXPECT_EQ(read_image(path, true).at(0, 0, 0), 0.5f);
 
-    // An 8-bit RGBA PNG (write_image writes only RGB), made with OIIO directly: colour 128, alpha 128.
+    // An 8-bit RGBA PNG: colour 128, alpha 128.
     const std::string png_path = file("rgba.png");
-    {
-      const unsigned char px[4] = {128, 128, 128, 128};
-      auto out = OIIO::ImageOutput::create(png_path);
-      ASSERT_TRUE(out);
-      OIIO::ImageSpec spec(1, 1, 4, OIIO::TypeDesc::UINT8);
-      spec.alpha_channel = 3;
-      spec.attribute("oiio:UnassociatedAlpha", 1);
-      ASSERT_TRUE(out->open(png_path, spec));
-      ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px));
-      out->close();
-    }
+    const unsigned char px[4] = {128, 128, 128, 128};
+    ASSERT_TRUE(write_rgba_png(png_path, OIIO::TypeDesc::UINT8, px));
     const Image raw = read_image(png_path);
     ASSERT_EQ(raw.channels, 4);
     EXPECT_NEAR(raw.at(0, 0, 0), 128 / 255.0f, 1e-6f);  // straight alpha: colour not premultiplied
@@ -148,17 +150,8 @@ TEST_F(ImageIoTest, RoundTrips) {
     reset();
     const std::string path = file("rgba16.png");
     const float code = 32768 / 65535.0f;
-    {
-      const uint16_t px[4] = {32768, 32768, 32768, 32768};
-      auto out = OIIO::ImageOutput::create(path);
-      ASSERT_TRUE(out);
-      OIIO::ImageSpec spec(1, 1, 4, OIIO::TypeDesc::UINT16);
-      spec.alpha_channel = 3;
-      spec.attribute("oiio:UnassociatedAlpha", 1);
-      ASSERT_TRUE(out->open(path, spec));
-      ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, px));
-      out->close();
-    }
+    const uint16_t px[4] = {32768, 32768, 32768, 32768};
+    ASSERT_TRUE(write_rgba_png(path, OIIO::TypeDesc::UINT16, px));
     const Image raw = read_image(path);
     ASSERT_EQ(raw.channels, 4);
     EXPECT_NEAR(raw.at(0, 0, 0), code, 1e-6f);
