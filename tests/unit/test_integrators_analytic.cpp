@@ -51,11 +51,10 @@ std::vector<Case> all_variants() {
           {"nee_mis", SamplerType::Independent, MisHeuristic::Power}};
 }
 
-Film render_scene(Scene& scene, const std::string& integrator, SamplerType sampler, uint32_t spp,
-                  MisHeuristic heuristic = MisHeuristic::Balance) {
-  scene.settings.integrator = integrator;
-  scene.settings.sampler = sampler;
-  scene.settings.mis_heuristic = heuristic;
+Film render_scene(Scene& scene, const Case& c, uint32_t spp) {
+  scene.settings.integrator = c.integrator;
+  scene.settings.sampler = c.sampler;
+  scene.settings.mis_heuristic = c.heuristic;
   return test::render_film(scene, spp).film;
 }
 
@@ -108,7 +107,7 @@ int footprint(const Scene& scene, int x, int y) {
 TEST(IntegratorAnalytic, WhiteFurnace) {
   auto scene = furnace_scene();
   for (const Case& c : all_variants()) {
-    const Film film = render_scene(*scene, c.integrator, c.sampler, 64, c.heuristic);
+    const Film film = render_scene(*scene, c, 64);
     expect_region(test::region_mean(film, [&](int x, int y) { return footprint(*scene, x, y) == 1; }), 0.8,
                   c.label() + " furnace sphere");
     expect_region(test::region_mean(film, [&](int x, int y) { return footprint(*scene, x, y) == 0; }), 1.0,
@@ -123,7 +122,7 @@ TEST(IntegratorAnalytic, FurnaceSilhouetteFollowsPixelCoverage) {
   // expectation moved by 1.2e-5, well under the 1e-3 allowed); its samples are Bernoulli, so the film's variance
   // estimate applies. Samples all through the pixel centre would give 0.8 or 1.
   auto scene = furnace_scene();
-  const Film film = render_scene(*scene, "bsdf", SamplerType::Stratified, 256);
+  const Film film = render_scene(*scene, {"bsdf", SamplerType::Stratified}, 256);
   Camera cam = scene->camera;
   cam.prepare(scene->settings.width, scene->settings.height);
   double mean = 0, expected = 0, var = 0;
@@ -159,11 +158,12 @@ TEST(IntegratorAnalytic, GlossyFurnaceAgreement) {
   p.roughness = 0.5f;
   auto scene = furnace_scene(make_pbr_material(p));
   const auto on_sphere = [&](int x, int y) { return footprint(*scene, x, y) == 1; };
-  const test::RegionMean ref = test::region_mean(render_scene(*scene, "bsdf", SamplerType::Stratified, 256), on_sphere);
+  const test::RegionMean ref =
+      test::region_mean(render_scene(*scene, {"bsdf", SamplerType::Stratified}, 256), on_sphere);
   const double z_max = test::sidak_z(kAlpha, kRegionTests);
   for (const Case& c : all_variants()) {
     if (c.integrator == "bsdf") continue;
-    const test::RegionMean r = test::region_mean(render_scene(*scene, c.integrator, c.sampler, 64, c.heuristic), on_sphere);
+    const test::RegionMean r = test::region_mean(render_scene(*scene, c, 64), on_sphere);
     for (int k = 0; k < 3; ++k) {
       const double sd = std::sqrt(r.var[k] + ref.var[k]), err = std::abs(r.mean[k] - ref.mean[k]);
       EXPECT_LT(err, z_max * sd) << c.label() << " glossy furnace: mean " << r.mean[k] << " reference "
@@ -204,7 +204,7 @@ TEST(IntegratorAnalytic, ClosedEmittingSphere) {
   scene.settings.rr_depth = 3;
   scene.finalize();
   for (const Case& c : all_variants()) {
-    const Film film = render_scene(scene, c.integrator, c.sampler, 32, c.heuristic);
+    const Film film = render_scene(scene, c, 32);
     expect_region(test::region_mean(film, [](int, int) { return true; }), 1.0, c.label() + " closed sphere");
   }
 }
@@ -232,7 +232,7 @@ TEST(IntegratorAnalytic, SphereLightOverPlane) {
   const double expected = rho * radiance.x * (r / h) * (r / h);
   for (const Case& c : all_variants()) {
     const uint32_t spp = c.integrator == "uniform" ? 20000 : 4000;
-    const Film film = render_scene(scene, c.integrator, c.sampler, spp, c.heuristic);
+    const Film film = render_scene(scene, c, spp);
     expect_region(test::region_mean(film, [](int, int) { return true; }), expected,
                   c.label() + " plane below light");
   }
