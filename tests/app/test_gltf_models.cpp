@@ -382,3 +382,45 @@ TEST(GltfModels, Materials) {
   EXPECT_EQ(coloured, 1);
 }
 
+
+// TextureTransformTest's rotation quad, end to end (loader, node transforms, uv, KHR_texture_transform, texture
+// lookup): the arrow texture draws a black arrow along its uv diagonal, from near (0, 0) to a tip at about (0.66,
+// 0.66). The material rotates uv by 22.5 degrees about the uv origin, the quad's top-left corner, so the arrow lies on
+// the line from that corner to the model's green "correct" marker. The yellow marker (rotation ignored) and the red
+// one (rotation turned the other way) sit on lines 22.5 and 45 degrees away; all three are 1.1 from the corner.
+// Points on the arrow's shaft are black only along the correct line (the shaft is under 9 texels wide either side;
+// the lines are 15 or more texels apart at the points tested).
+TEST(GltfModels, TextureTransformArrowPointsAtTheCorrectMarker) {
+  REQUIRE_ASSETS();
+  const auto scene = load_scene(model("TextureTransformTest/glTF/TextureTransformTest.gltf"));
+  const Vec3 quad(-1.1f, -0.55f, 0);  // node "Rotation"
+  const Vec3 corner = quad + Vec3(-0.5f, 0.5f, 0);
+  // The markers' translations (children of "Rotation", in front of it at z = 0.01).
+  const std::array<std::pair<const char*, Vec3>, 3> markers = {{{"correct", Vec3(-0.0790482f, -0.5162675f, 0)},
+                                                                {"not supported", Vec3(0.2778175f, -0.2778175f, 0)},
+                                                                {"error", Vec3(0.5162675f, 0.0790482f, 0)}}};
+  // The albedo seen straight down -z at (x, y); the hit must be the quad (z = 0), not a marker.
+  auto albedo_at = [&](Vec3 p, Vec2* uv = nullptr) {
+    Hit hit;
+    EXPECT_TRUE(scene->geometry.intersect(Ray(Vec3(p.x, p.y, 1), Vec3(0, 0, -1)), hit));
+    EXPECT_NEAR(hit.t, 1.0f, 1e-4f);
+    if (uv) *uv = hit.uv[0];
+    const Color a = scene->materials.at(hit.material)->albedo(hit);
+    return (a.x + a.y + a.z) / 3;
+  };
+  Vec2 uv;
+  albedo_at(corner + Vec3(0.001f, -0.001f, 0), &uv);  // the corner is the uv origin
+  EXPECT_NEAR(uv.x, 0.0f, 0.01f);
+  EXPECT_NEAR(uv.y, 0.0f, 0.01f);
+  for (const auto& [name, offset] : markers) {
+    const Vec3 to_marker = quad + offset - corner;
+    EXPECT_NEAR(length(to_marker), 1.1f, 1e-4f) << name;
+    for (float r : {0.3f, 0.5f}) {
+      const float a = albedo_at(corner + to_marker * (r / 1.1f));
+      if (std::string(name) == "correct")
+        EXPECT_LT(a, 0.05f) << "the arrow's shaft is not on the line to the " << name << " marker, at " << r;
+      else
+        EXPECT_GT(a, 0.5f) << "the arrow's shaft is on the line to the " << name << " marker, at " << r;
+    }
+  }
+}
