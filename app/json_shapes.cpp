@@ -229,12 +229,8 @@ bool JsonSceneBuilder::add_gltf(const GltfScene& gltf, const std::vector<int>& r
       mesh.material = own[gi];
       emission = {params.emissive, params.emissive_texture, params.double_sided};
     }
-    // Cut-outs belong to the geometry, so they stay even when the shading is remapped.
-    if (gi < static_cast<int>(gltf.materials.size()) && !mesh.alpha) {
-      const GltfMaterial& gm = gltf.materials[gi];
-      if (gm.alpha_mode == AlphaMode::Mask)
-        mesh.alpha = AlphaMask{gm.alpha_cutoff, gm.params.base_alpha, gm.params.base_color_texture};
-    }
+    // A cut-out (alphaMode MASK) is on the mesh already (mesh.alpha, set by the glTF loader): it belongs to the
+    // geometry, so it stays when the shading is remapped.
     any_emitter = any_emitter || emission.emits();
     add_mesh(std::move(mesh), emission, sampling);
   }
