@@ -293,3 +293,89 @@ TEST_F(GltfFiles, InstancingAndDegenerateTriangles) {
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_EQ(s.warnings[0], "degenerate triangles dropped (4)");
 }
+
+// Normalized BYTE quaternions decode by glTF's max(c / 127, -1): -128 and 127 are -1 and 1 exactly, so (-128, 0, 0,
+// 127) is a quarter turn about -x and (0, 0, 127, -128) one about -z. Dividing by 128 instead would make 127 read
+// 0.992 and tilt both rotations by about half a degree (0.008 at these vertices); the rotation normalizes q, so only
+// the -1 clamp's side of the range shows it.
+TEST_F(GltfFiles, SnormRotationsDecodeBySpecsFormula) {
+  Triangle t;
+  const size_t ro = t.bin.add<int8_t>({-128, 0, 0, 127, 0, 0, 127, -128});
+  const std::string views = t.views.substr(0, t.views.size() - 1) + "," + Triangle::view(ro, 8) + "]";
+  const std::string acc = t.accessors.substr(0, t.accessors.size() - 1) +
+                          R"(,{"bufferView":3,"componentType":5120,"normalized":true,"count":2,"type":"VEC4"}])";
+  const std::string node = R"({"mesh":0,"extensions":{"EXT_mesh_gpu_instancing":{"attributes":{"ROTATION":3}}}})";
+  const GltfScene s = load_gltf(simple("q.gltf", t.bin, views, acc, Triangle::prim, node,
+                                       R"(,"extensionsUsed":["EXT_mesh_gpu_instancing"])"));
+  ASSERT_EQ(s.meshes.size(), 2u);
+  expect_vec(s.meshes[0].positions[2], {0, 0, -1});  // (0, 1, 0), a quarter turn about -x
+  expect_vec(s.meshes[1].positions[1], {0, -1, 0});  // (1, 0, 0), a quarter turn about -z
+}
+
+// A node's translation, rotation and scale, and an EXT_mesh_gpu_instancing instance's, compose as T * R * S: scale
+// first, then rotate, then translate. With T (1, 2, 3), a quarter turn about z and S (2, 3, 4), the corner (1, 0, 0)
+// goes to (2, 0, 0), (0, 2, 0), (1, 4, 3) and (0, 1, 0) to (0, 3, 0), (-3, 0, 0), (-2, 2, 3); any other order lands
+// elsewhere (S * T * R puts (1, 0, 0) at (2, 9, 12)).
+TEST_F(GltfFiles, TrsComposesAsTranslateRotateScale) {
+  Triangle t;
+  const std::string trs = R"("translation":[1,2,3],"rotation":[0,0,0.70710678,0.70710678],"scale":[2,3,4])";
+  const GltfScene node = load_gltf(simple("n.gltf", t.bin, t.views, t.accessors, Triangle::prim,
+                                          R"({"mesh":0,)" + trs + "}"));
+  const size_t tr = t.bin.add<float>({1, 2, 3});
+  const size_t ro = t.bin.add<float>({0, 0, 0.70710678f, 0.70710678f});
+  const size_t sc = t.bin.add<float>({2, 3, 4});
+  const std::string views = t.views.substr(0, t.views.size() - 1) + "," + Triangle::view(tr, 12) + "," +
+                            Triangle::view(ro, 16) + "," + Triangle::view(sc, 12) + "]";
+  const std::string acc = t.accessors.substr(0, t.accessors.size() - 1) +
+                          R"(,{"bufferView":3,"componentType":5126,"count":1,"type":"VEC3"},)"
+                          R"({"bufferView":4,"componentType":5126,"count":1,"type":"VEC4"},)"
+                          R"({"bufferView":5,"componentType":5126,"count":1,"type":"VEC3"}])";
+  const GltfScene instanced = load_gltf(
+      simple("i.gltf", t.bin, views, acc, Triangle::prim,
+             R"({"mesh":0,"extensions":{"EXT_mesh_gpu_instancing":{"attributes":)"
+             R"({"TRANSLATION":3,"ROTATION":4,"SCALE":5}}}})",
+             R"(,"extensionsUsed":["EXT_mesh_gpu_instancing"])"));
+  for (const GltfScene* s : {&node, &instanced}) {
+    ASSERT_EQ(s->meshes.size(), 1u);
+    expect_vec(s->meshes[0].positions[0], {1, 2, 3});
+    expect_vec(s->meshes[0].positions[1], {1, 4, 3});
+    expect_vec(s->meshes[0].positions[2], {-2, 2, 3});
+  }
+}
+
+// Grey textures become RGB: a grey PNG's one channel fills R, G and B; a grey + alpha PNG's second channel is its
+// alpha, which stays linear while the grey is decoded from sRGB.
+TEST_F(GltfFiles, GreyTexturesBecomeRgb) {
+  auto write_png = [&](const std::string& name, int channels, const std::vector<unsigned char>& px) {
+    const std::string path = file(name);
+    auto out = OIIO::ImageOutput::create(path);
+    OIIO::ImageSpec spec(2, 1, channels, OIIO::TypeDesc::UINT8);
+    if (channels == 2) {
+      spec.alpha_channel = 1;
+      spec.attribute("oiio:UnassociatedAlpha", 1);
+    }
+    EXPECT_TRUE(out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT8, px.data())) << path;
+    if (out) out->close();
+  };
+  write_png("grey.png", 1, {40, 220});
+  write_png("grey_alpha.png", 2, {40, 60, 220, 250});
+  Triangle t;
+  const std::string extra =
+      R"(,"images":[{"uri":"grey.png"},{"uri":"grey_alpha.png"}],"textures":[{"source":0},{"source":1}],)"
+      R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}},)"
+      R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":1}}}])";
+  const std::string prim = R"({"attributes":{"POSITION":0,"NORMAL":1},"indices":2,"material":0})";
+  const GltfScene s = load_gltf(simple("g.gltf", t.bin, t.views, t.accessors, prim, R"({"mesh":0})", extra));
+  ASSERT_EQ(s.materials.size(), 2u);
+  const Image& grey = *s.materials[0].params.base_color_texture->image;
+  const Image& grey_alpha = *s.materials[1].params.base_color_texture->image;
+  ASSERT_EQ(grey.channels, 3);
+  ASSERT_EQ(grey_alpha.channels, 4);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(grey.at(1, 0, c), srgb_to_linear(220 / 255.0f), 1e-6f) << c;
+    EXPECT_NEAR(grey_alpha.at(0, 0, c), srgb_to_linear(40 / 255.0f), 1e-6f) << c;
+    EXPECT_NEAR(grey_alpha.at(1, 0, c), srgb_to_linear(220 / 255.0f), 1e-6f) << c;
+  }
+  EXPECT_NEAR(grey_alpha.at(0, 0, 3), 60 / 255.0f, 1e-6f);
+  EXPECT_NEAR(grey_alpha.at(1, 0, 3), 250 / 255.0f, 1e-6f);
+}
