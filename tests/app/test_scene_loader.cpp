@@ -2,9 +2,11 @@
 // (bad input: test_scene_loader_errors.cpp).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <regex>
 #include <string>
+#include <tuple>
 
 #include "core/image_io.h"
 #include "tests/app/scene_loader_test_util.h"
@@ -177,6 +179,25 @@ TEST_F(SceneLoader, MirroringTransformKeepsTheFrontFace) {
   EXPECT_GT(dot(ng, m.normals[0]), 0);
 }
 
+// Normals transform by the inverse transpose: under a non-uniform scale they stay perpendicular to the surface. The
+// triangle's edges (1, -1, 0) and (0, 0, 1) are perpendicular to its normal (1, 1, 0) / sqrt 2; scaled by (1, 2, 1)
+// the edges become (1, -2, 0) and (0, 0, 1), and the normal must become (2, 1, 0) / sqrt 5 (transformed like a
+// direction it would be (1, 2, 0) / sqrt 5, 37 degrees off).
+TEST_F(SceneLoader, NormalsStayPerpendicularUnderNonUniformScale) {
+  const auto scene = load_scene(write_scene(
+      R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [{"type": "mesh", "material": "m",
+          "positions": [[0,0,0], [1,-1,0], [0,0,1]], "normals": [[1,1,0], [1,1,0], [1,1,0]], "indices": [0,1,2],
+          "transform": {"scale": [1, 2, 1]}}]})"));
+  const TriangleMesh& m = scene->geometry.mesh(0);
+  const Vec3 e1 = m.positions[1] - m.positions[0], e2 = m.positions[2] - m.positions[0];
+  for (const Vec3& n : m.normals) {
+    EXPECT_NEAR(length(n), 1.0f, 1e-6f);
+    EXPECT_NEAR(dot(n, e1), 0.0f, 1e-6f);
+    EXPECT_NEAR(dot(n, e2), 0.0f, 1e-6f);
+    EXPECT_NEAR(n.x, 2 / std::sqrt(5.0f), 1e-6f);
+  }
+}
+
 TEST_F(SceneLoader, EmissionMakesShapesLightsThatStayGeometry) {
   const auto scene = load_scene(write_scene(
       R"({"materials": {"m": {"type": "diffuse"}, "glow": {"type": "pbr", "emissive": [2, 2, 2]}},
@@ -190,6 +211,46 @@ TEST_F(SceneLoader, EmissionMakesShapesLightsThatStayGeometry) {
   EXPECT_EQ(scene->geometry.mesh(1).material, 1);
   EXPECT_EQ(scene->geometry.mesh(1).light, 1);
   EXPECT_EQ(scene->geometry.mesh(2).light, 2);
+}
+
+// A pbr material with non-zero emissive makes every shape using it a light with that radiance: a sphere, and a glTF
+// mesh whose own material is replaced by it ("materials"); "emission" on the shape wins over it.
+TEST_F(SceneLoader, EmissiveMaterialMakesEveryShapeUsingItALight) {
+  const auto scene = load_scene(write_scene(
+      R"({"materials": {"glow": {"type": "pbr", "emissive": [2, 3, 4]}},
+          "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "glow"},
+                     {"type": "sphere", "center": [5,0,0], "radius": 1, "material": "glow", "emission": [1,1,1]},
+                     {"type": "gltf", "file": ")" + kBoxGlb + R"(", "materials": {"Red": "glow"},
+                      "transform": {"translate": [10,0,0]}}]})"));
+  ASSERT_EQ(scene->lights.size(), 3u);
+  EXPECT_EQ(scene->geometry.sphere(0).light, 0);
+  EXPECT_EQ(scene->geometry.sphere(1).light, 1);
+  EXPECT_EQ(scene->geometry.mesh(2).light, 2);
+  // Seen from +z, straight at each shape's surface facing +z.
+  for (const auto& [x, light, radiance] : {std::tuple{0.0f, 0, Color(2, 3, 4)}, std::tuple{5.0f, 1, Color(1, 1, 1)},
+                                           std::tuple{10.0f, 2, Color(2, 3, 4)}}) {
+    Hit on;
+    ASSERT_TRUE(scene->geometry.intersect(Ray(Vec3(x, 0.1f, 3), Vec3(0, 0, -1)), on)) << x;
+    EXPECT_EQ(on.light, light) << x;
+    EXPECT_EQ(scene->lights[light]->le(on, Vec3(0, 0, 1)), radiance) << x;
+  }
+}
+
+// A glTF cut-out (alphaMode MASK) belongs to the geometry: it stays, with its cutoff, when "materials" replaces the
+// shading.
+TEST_F(SceneLoader, GltfCutoutsStayWhenTheMaterialIsReplaced) {
+  const auto scene = load_scene(write_scene(
+      R"({"materials": {"m": {"type": "diffuse"}},
+          "shapes": [{"type": "gltf", "file": ")" + kAssets + R"(/gltf/AlphaBlendModeTest/glTF/AlphaBlendModeTest.gltf",
+                      "materials": {"MatCutoff25": "m"}}]})"));
+  int replaced = 0;
+  for (size_t g = 0; g < scene->geometry.geometry_count(); ++g) {
+    if (!scene->geometry.is_mesh(g) || scene->geometry.mesh(g).material != 0) continue;
+    ++replaced;
+    ASSERT_TRUE(scene->geometry.mesh(g).alpha.has_value());
+    EXPECT_EQ(scene->geometry.mesh(g).alpha->cutoff, 0.25f);
+  }
+  EXPECT_GE(replaced, 1);
 }
 
 TEST_F(SceneLoader, FileTypeIsTheExtensionInAnyCase) {
@@ -229,6 +290,44 @@ TEST_F(SceneLoader, GltfEmissiveMeshesBecomeMeshLightsAndNoSkyIsAdded) {
       EXPECT_GE(scene->geometry.mesh(id).material, 0);  // still shaded geometry
     }
   EXPECT_EQ(lit, scene->lights.size());
+}
+
+// A quad's texture coordinates, as the scene format documents them: (0, 0) at origin, (1, 0) at origin + edge_u,
+// (0, 1) at origin + edge_v; a hit at origin + 0.8 edge_u + 0.1 edge_v reads (0.8, 0.1).
+TEST_F(SceneLoader, QuadTextureCoordinatesFollowItsEdges) {
+  const auto scene = load_scene(write_scene(
+      R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [{"type": "quad", "material": "m",
+          "origin": [-1,0,-1], "edge_u": [2,0,0], "edge_v": [0,0,4]}]})"));
+  for (const auto& [s, t] : {std::pair{0.8f, 0.1f}, std::pair{0.3f, 0.6f}}) {
+    const Vec3 p = Vec3(-1, 0, -1) + Vec3(2, 0, 0) * s + Vec3(0, 0, 4) * t;
+    Hit hit;
+    ASSERT_TRUE(scene->geometry.intersect(Ray(p + Vec3(0, 1, 0), Vec3(0, -1, 0)), hit));
+    EXPECT_NEAR(hit.uv[0].x, s, 1e-5f);
+    EXPECT_NEAR(hit.uv[0].y, t, 1e-5f);
+  }
+}
+
+// An environment map's "scale" and "rotation" reach the light: the loaded light's radiance equals that of the same
+// map made with scale 2 and rotation 90 directly, in directions where the map without them reads differently.
+TEST_F(SceneLoader, EnvironmentMapScaleAndRotationAreApplied) {
+  auto sky = std::make_shared<Image>(8, 4, std::vector<std::string>{"R", "G", "B"});
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 8; ++x)
+      for (int c = 0; c < 3; ++c) sky->at(x, y, c) = 0.1f + 0.1f * x + 0.02f * y + 0.01f * c;
+  write_image((test_dir() / "sky.exr").string(), *sky);
+  const auto scene = load_scene(write_scene(
+      R"({"lights": [{"type": "environment", "file": "sky.exr", "scale": 2, "rotation": 90}]})"));
+  ASSERT_GE(scene->environment, 0);
+  const Light& loaded = *scene->lights[scene->environment];
+  const auto expected = make_image_environment(sky, 2, 90), plain = make_image_environment(sky, 1, 0);
+  for (const Vec3 d : {Vec3(1, 0.2f, 0), Vec3(0, -0.3f, 1), Vec3(-1, 0.5f, -1)}) {
+    const Vec3 w = normalize(d);
+    const Color a = loaded.le_escaped(w), e = expected->le_escaped(w), p = plain->le_escaped(w);
+    EXPECT_NEAR(a.x, e.x, 1e-6f);
+    EXPECT_NEAR(a.y, e.y, 1e-6f);
+    EXPECT_NEAR(a.z, e.z, 1e-6f);
+    EXPECT_GT(std::abs(e.x - p.x), 0.05f) << "the test's map reads the same without scale and rotation";
+  }
 }
 
 TEST_F(SceneLoader, EnvironmentMapAndTexturesLoad) {
