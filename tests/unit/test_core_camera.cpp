@@ -1,5 +1,6 @@
 // The pinhole camera of core/camera.cpp: where the image's edges point (vertical field of view, aspect ratio,
-// orientation), square pixels, unit directions, and a usable basis when `up` is parallel to the view direction.
+// orientation), square pixels, the near clip, unit directions, and a usable basis when `up` is parallel to the view
+// direction.
 // Deterministic geometry: no statistics, tolerances are float rounding.
 #include <gtest/gtest.h>
 
@@ -68,6 +69,20 @@ TEST(Camera, PixelsAreSquare) {
     const double across = angle_between(c, cam.generate_ray({cx + 1, cy}).d);
     const double down = angle_between(c, cam.generate_ray({cx, cy + 1}).d);
     EXPECT_NEAR(across / down, 1.0, 1e-3) << w << "x" << h;
+  }
+}
+
+// near_clip: every ray starts that far from the eye along its own direction (the scene format's "near"), so
+// whatever is closer to the eye is not seen.
+TEST(Camera, RaysStartNearClipFromTheEye) {
+  Camera cam = looking_down_z(60);
+  cam.near_clip = 2;
+  cam.prepare(40, 30);
+  for (const Vec2 film : {Vec2(20, 15), Vec2(0, 0), Vec2(40, 30), Vec2(3.5f, 27)}) {
+    const Ray r = cam.generate_ray(film);
+    EXPECT_NEAR(length(r.o - cam.from), 2.0f, 1e-6f);
+    EXPECT_LT(length(cross(r.o - cam.from, r.d)), 1e-6f);  // on the ray from the eye
+    EXPECT_GT(dot(r.o - cam.from, r.d), 0.0f);            // ahead of the eye
   }
 }
 
