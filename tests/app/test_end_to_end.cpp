@@ -3,11 +3,13 @@
 //    sampler (samples depend on (pixel, index, seed) only; each pixel is accumulated by one thread in order), and
 //    with rays traced in packets or one by one (to float rounding of the hit distance); the lockstep loop over
 //    a 16x16 tile's paths gives what each path traced alone gives; every pixel gets its own camera rays;
+//  - a cancelled or timed-out render stops at a pass boundary and reports the samples it took;
 //  - scenes/furnace.json renders to its closed form: 0.8 on the diffuse sphere, 1 on the background (z-tests of
 //    region means at a Sidak-corrected alpha 0.01 over the 6 tests; fixed seed).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 
@@ -167,6 +169,38 @@ TEST(EndToEnd, EveryPixelGetsItsOwnCameraRays) {
         EXPECT_LT(length(Vec3(m[0], m[1], m[2]) - centre), 0.25f * pixel_angle) << x << ", " << y;
       }
   }
+}
+
+// A render stops at a pass boundary when cancelled (Ctrl-C) or out of time, and its statistics say what it took.
+// The first pass is one sample per pixel, so a cancel requested from the first progress report, or a budget of a
+// nanosecond, stops after exactly 1 of the 64 samples per pixel asked for.
+TEST(EndToEnd, EarlyStopReportsTheSamplesTaken) {
+  auto scene = load_scene(scene_path("cornell-sphere.json"));
+  scene->settings.width = 24;
+  scene->settings.height = 20;
+  const uint64_t pixels = 24 * 20;
+  std::atomic<bool> cancel{false};
+  int reports = 0;
+  RenderOptions by_cancel;
+  by_cancel.cancel = &cancel;
+  by_cancel.on_progress = [&](const RenderProgress& p) {
+    ++reports;
+    EXPECT_EQ(p.samples_done, pixels);
+    cancel = true;
+  };
+  RenderOptions by_time;
+  by_time.time_budget = 1e-9;
+  for (const RenderOptions& options : {by_cancel, by_time}) {
+    const test::Rendered r = test::render_film(*scene, 64, options);
+    EXPECT_TRUE(r.stats.stopped_early);
+    EXPECT_EQ(r.stats.spp, 1u);
+    EXPECT_EQ(r.stats.samples, pixels);
+  }
+  EXPECT_EQ(reports, 1);
+  const test::Rendered full = test::render_film(*scene, 2, {});
+  EXPECT_FALSE(full.stats.stopped_early);
+  EXPECT_EQ(full.stats.spp, 2u);
+  EXPECT_EQ(full.stats.samples, 2 * pixels);
 }
 
 TEST(EndToEnd, FurnaceSceneMatchesClosedForm) {
