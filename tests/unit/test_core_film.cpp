@@ -1,9 +1,11 @@
 // Film: non-finite samples (NaN, +Inf, -Inf, and values that overflow when summed in float elsewhere) are dropped
-// and counted per pixel, and never reach the mean, the variance or the sample count. Deterministic.
+// and counted per pixel, and never reach the mean, the variance or the sample count; AOV channels are the means of
+// their samples. Deterministic.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "core/film.h"
 
@@ -41,6 +43,28 @@ TEST(Film, VarianceBeyondFloatRangeIsTheLargestFloatNotInf) {
   EXPECT_FLOAT_EQ(film.mean(0, 0)[0], 1.5e38f);
   EXPECT_EQ(film.variance_of_mean(0, 0)[0], std::numeric_limits<float>::max());
   for (float v : film.to_image().data) EXPECT_TRUE(std::isfinite(v));
+}
+
+// Each AOV channel is the mean of its samples, written under its own name.
+TEST(Film, AovChannelsAreTheMeansOfTheirSamples) {
+  Film film(1, 1, FilmOptions{true, true, true, true});
+  AovSample a{Color(0.0f, 0.1f, 0.2f), Vec3(0, 1, 0), 1.0f}, b{Color(0.2f, 0.3f, 0.4f), Vec3(0, 0.2f, 1.6f), 5.0f};
+  film.add(0, 0, Color(1.0f), &a);
+  film.add(0, 0, Color(1.0f), &b);
+  const Image img = film.to_image();
+  auto channel = [&](const std::string& name) {
+    for (int c = 0; c < img.channels; ++c)
+      if (img.channel_names[c] == name) return img.at(0, 0, c);
+    ADD_FAILURE() << "no channel " << name;
+    return 0.0f;
+  };
+  EXPECT_NEAR(channel("albedo.R"), 0.1f, 1e-6f);
+  EXPECT_NEAR(channel("albedo.G"), 0.2f, 1e-6f);
+  EXPECT_NEAR(channel("albedo.B"), 0.3f, 1e-6f);
+  EXPECT_NEAR(channel("N.X"), 0.0f, 1e-6f);
+  EXPECT_NEAR(channel("N.Y"), 0.6f, 1e-6f);
+  EXPECT_NEAR(channel("N.Z"), 0.8f, 1e-6f);
+  EXPECT_NEAR(channel("Z"), 3.0f, 1e-6f);
 }
 
 TEST(Film, AovsIgnoreNonFiniteValues) {
