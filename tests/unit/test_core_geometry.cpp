@@ -259,16 +259,20 @@ TEST(Geometry, ShadowPacketMatchesSingleRays) {
   EXPECT_GT(clear, 200);
 }
 
+/// The square [-1, 1]^2 in the plane z, as two triangles facing +z (the alpha-mask tests' layers).
+TriangleMesh square_at(float z) {
+  TriangleMesh m;
+  m.positions = {{-1, -1, z}, {1, -1, z}, {1, 1, z}, {-1, 1, z}};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  return m;
+}
+
 // glTF alphaMode MASK: a quad whose alpha (0.2) is below its cutoff (0.5) is skipped by both queries (the filter
 // function sees single rays and 16-wide packets), so the rays reach the quad behind it.
 TEST(Geometry, AlphaMaskedSurfaceIsSkippedBySingleAndPacketQueries) {
   Geometry g;
-  TriangleMesh front, back;
-  front.positions = {{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
-  front.indices = {0, 1, 2, 0, 2, 3};
+  TriangleMesh front = square_at(1), back = square_at(0);
   front.alpha = AlphaMask{0.5f, 0.2f, std::nullopt};
-  back.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
-  back.indices = {0, 1, 2, 0, 2, 3};
   const uint32_t back_id = (g.add_mesh(front), g.add_mesh(back));
   g.commit();
   Ray rays[16];
@@ -303,9 +307,7 @@ TEST(Geometry, AlphaMaskedSurfaceIsSkippedBySingleAndPacketQueries) {
 // packets alike.
 TEST(Geometry, AlphaMaskReadsTheTexturesAlpha) {
   Geometry g;
-  TriangleMesh front, back;
-  front.positions = {{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
-  front.indices = {0, 1, 2, 0, 2, 3};
+  TriangleMesh front = square_at(1), back = square_at(0);
   front.uv0 = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};  // u = (x + 1) / 2
   auto image = std::make_shared<Image>(2, 1, std::vector<std::string>{"R", "G", "B", "A"});
   for (float& v : image->data) v = 1;
@@ -314,8 +316,6 @@ TEST(Geometry, AlphaMaskReadsTheTexturesAlpha) {
   texture.image = image;
   texture.nearest = true;
   front.alpha = AlphaMask{0.5f, 1.0f, texture};
-  back.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
-  back.indices = {0, 1, 2, 0, 2, 3};
   const uint32_t front_id = g.add_mesh(front), back_id = g.add_mesh(back);
   g.commit();
   Ray rays[16];

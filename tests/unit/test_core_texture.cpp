@@ -121,8 +121,8 @@ TEST(Texture, TransformAppliesBeforeWrapping) {
 // KHR_texture_transform's rotation turns the uvs counter-clockwise as the uv map is drawn (u right, v down):
 // u' = c u + s v, v' = -s u + c v, so +u turns toward -v. The GLSL listing in the extension's README reads the
 // other way in a v-up space. This direction is the README's wording, and by the discussion in glTF issue #1563 the
-// one Babylon.js, three.js and the sample model TextureTransformTest agree on (not rendered here). Offset and
-// scale around it: uv' = offset + R(scale * uv).
+// one Babylon.js, three.js and the sample model TextureTransformTest agree on (the model, rendered, is checked by
+// GltfModels.TextureTransformArrowPointsAtTheCorrectMarker). Offset and scale around it: uv' = offset + R(scale * uv).
 TEST(Texture, TransformRotationDirection) {
   TextureTransform t;
   t.rotation = kPi / 2;
