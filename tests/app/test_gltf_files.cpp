@@ -2,8 +2,6 @@
 // encodings, textures and samplers, instancing, degenerate triangles. The error paths are in test_gltf_errors.cpp.
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +10,7 @@
 #include "core/image_io.h"
 #include "tests/app/gltf_synthetic.h"
 #include "tests/app/gltf_test_util.h"
+#include "tests/app/png_test_util.h"
 
 namespace fs = std::filesystem;
 using namespace lumis;
@@ -141,15 +140,8 @@ TEST_F(GltfFiles, StripsFansAndAttributeEncodings) {
 TEST_F(GltfFiles, TexturesEmbeddedExternalSamplersAndTransforms) {
   // A 2x1 RGBA PNG: used embedded (data: URI) and external, both decoded by OpenImageIO.
   const std::string png = (dir_ / "tex.png").string();
-  {
-    const unsigned char px[8] = {200, 100, 50, 128, 0, 255, 10, 255};
-    auto out = OIIO::ImageOutput::create(png);
-    OIIO::ImageSpec spec(2, 1, 4, OIIO::TypeDesc::UINT8);
-    spec.alpha_channel = 3;
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    ASSERT_TRUE(out && out->open(png, spec) && out->write_image(OIIO::TypeDesc::UINT8, px));
-    out->close();
-  }
+  const unsigned char px[8] = {200, 100, 50, 128, 0, 255, 10, 255};
+  ASSERT_TRUE(test::write_png(png, 2, 1, 4, px));
   std::ifstream f(png, std::ios::binary);
   const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
   Triangle t;
@@ -220,12 +212,7 @@ TEST_F(GltfFiles, EmbeddedImagesDecodeExactlyAsExternalOnes) {
   {
     std::vector<unsigned char> px(pattern.data.size());
     for (size_t i = 0; i < px.size(); ++i) px[i] = static_cast<unsigned char>(std::lround(pattern.data[i] * 255));
-    auto out = OIIO::ImageOutput::create(png);
-    OIIO::ImageSpec spec(pattern.width, pattern.height, 4, OIIO::TypeDesc::UINT8);
-    spec.alpha_channel = 3;
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    ASSERT_TRUE(out && out->open(png, spec) && out->write_image(OIIO::TypeDesc::UINT8, px.data()));
-    out->close();
+    ASSERT_TRUE(test::write_png(png, pattern.width, pattern.height, 4, px.data()));
   }
   const std::string prim = R"({"attributes":{"POSITION":0,"NORMAL":1},"indices":2,"material":0})";
   // Base colour (sRGB-decoded) and metallic-roughness (linear) from the one image.
@@ -346,19 +333,9 @@ TEST_F(GltfFiles, TrsComposesAsTranslateRotateScale) {
 // Grey textures become RGB: a grey PNG's one channel fills R, G and B; a grey + alpha PNG's second channel is its
 // alpha, which stays linear while the grey is decoded from sRGB.
 TEST_F(GltfFiles, GreyTexturesBecomeRgb) {
-  auto write_png = [&](const std::string& name, int channels, const std::vector<unsigned char>& px) {
-    const std::string path = file(name);
-    auto out = OIIO::ImageOutput::create(path);
-    OIIO::ImageSpec spec(2, 1, channels, OIIO::TypeDesc::UINT8);
-    if (channels == 2) {
-      spec.alpha_channel = 1;
-      spec.attribute("oiio:UnassociatedAlpha", 1);
-    }
-    EXPECT_TRUE(out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT8, px.data())) << path;
-    if (out) out->close();
-  };
-  write_png("grey.png", 1, {40, 220});
-  write_png("grey_alpha.png", 2, {40, 60, 220, 250});
+  const unsigned char grey_px[2] = {40, 220}, grey_alpha_px[4] = {40, 60, 220, 250};
+  ASSERT_TRUE(test::write_png(file("grey.png"), 2, 1, 1, grey_px));
+  ASSERT_TRUE(test::write_png(file("grey_alpha.png"), 2, 1, 2, grey_alpha_px));
   Triangle t;
   const std::string extra =
       R"(,"images":[{"uri":"grey.png"},{"uri":"grey_alpha.png"}],"textures":[{"source":0},{"source":1}],)"

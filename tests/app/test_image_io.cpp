@@ -8,9 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include <OpenImageIO/imageio.h>
-
 #include "core/image_io.h"
+#include "tests/app/png_test_util.h"
 #include "tests/support/file_size_limit.h"
 #include "tests/support/test_dir.h"
 
@@ -36,17 +35,6 @@ Image gradient(int w, int h, std::vector<std::string> names) {
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < img.channels; ++c) img.at(x, y, c) = (x + 1) * 0.037f + y * 0.11f + c * 0.013f - 0.05f;
   return img;
-}
-
-/// Writes a 1x1 RGBA PNG with straight alpha through OIIO directly (write_image writes only RGB); `type` is UINT8 or
-/// UINT16 and `px` holds four values of it. False when OIIO fails.
-bool write_rgba_png(const std::string& path, OIIO::TypeDesc type, const void* px) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) return false;
-  OIIO::ImageSpec spec(1, 1, 4, type);
-  spec.alpha_channel = 3;
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  return out->open(path, spec) && out->write_image(type, px) && out->close();
 }
 
 }  // namespace
@@ -137,7 +125,7 @@ TEST_F(ImageIoTest, RoundTrips) {
     // An 8-bit RGBA PNG: colour 128, alpha 128.
     const std::string png_path = file("rgba.png");
     const unsigned char px[4] = {128, 128, 128, 128};
-    ASSERT_TRUE(write_rgba_png(png_path, OIIO::TypeDesc::UINT8, px));
+    ASSERT_TRUE(test::write_png(png_path, 1, 1, 4, px));  // write_image writes only RGB
     const Image raw = read_image(png_path);
     ASSERT_EQ(raw.channels, 4);
     EXPECT_NEAR(raw.at(0, 0, 0), 128 / 255.0f, 1e-6f);  // straight alpha: colour not premultiplied
@@ -151,7 +139,7 @@ TEST_F(ImageIoTest, RoundTrips) {
     const std::string path = file("rgba16.png");
     const float code = 32768 / 65535.0f;
     const uint16_t px[4] = {32768, 32768, 32768, 32768};
-    ASSERT_TRUE(write_rgba_png(path, OIIO::TypeDesc::UINT16, px));
+    ASSERT_TRUE(test::write_png(path, 1, 1, 4, px, OIIO::TypeDesc::UINT16));
     const Image raw = read_image(path);
     ASSERT_EQ(raw.channels, 4);
     EXPECT_NEAR(raw.at(0, 0, 0), code, 1e-6f);
