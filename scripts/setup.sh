@@ -5,11 +5,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# The tests also need: openimageio-tools (iinfo, oiiotool), python3 (cli_bench checks the bench JSON with it), clang
+# (the fuzz stage) and chromium (cli_compare runs the HTML viewer's script). A slim Debian 12 image lacks python3.
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools
   libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  libgtest-dev libgmock-dev
+  libgtest-dev libgmock-dev python3
   clang libclang-rt-14-dev
   chromium
 )

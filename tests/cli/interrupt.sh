@@ -3,11 +3,11 @@
 # rendered so far (exit 130) with its true sample count in the EXR metadata and leaves no temporary file; SIGTERM
 # does the same (exit 143); --time stops at the budget (exit 0) the same way; a render too large for the memory
 # available fails before allocating.
-# Usage: interrupt.sh path/to/lumis   (exit 77 = skipped)
+# Usage: interrupt.sh path/to/lumis
 set -uo pipefail
 LUMIS=${1:?usage: interrupt.sh path/to/lumis}
 source "$(dirname "$0")/common.bash"
-command -v iinfo >/dev/null || { echo "skip: iinfo (openimageio-tools) missing"; exit 77; }
+need iinfo openimageio-tools
 fail() { echo "FAIL: $*"; [ -f "$T/err" ] && sed 's/^/    /' "$T/err"; exit 1; }  # with lumis's messages
 
 # attr FILE NAME: the value of a string attribute in the image header.

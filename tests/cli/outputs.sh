@@ -48,14 +48,13 @@ expect 0 "$LUMIS" "${R[@]}" --integrator mis --mis-light-probability 0.3 -o "$T/
 [ ! -s "$T/err" ] || fail "a warning for options that apply: $(cat "$T/err")"
 
 # --width or --height alone keeps the scene's aspect ratio (cornell-sphere is 512 x 512).
-if command -v iinfo >/dev/null; then
-  expect 0 "$LUMIS" render "$SCENE" --width 24 --spp 1 -q -o "$T/aspect.png"
-  iinfo "$T/aspect.png" | grep -Eq " 24 x +24," || fail "--width 24 alone: $(iinfo "$T/aspect.png")"
-  expect 0 "$LUMIS" render "$SCENE" --height 20 --spp 1 -q -o "$T/aspect.png"
-  iinfo "$T/aspect.png" | grep -Eq " 20 x +20," || fail "--height 20 alone: $(iinfo "$T/aspect.png")"
-  expect 0 "$LUMIS" render "$SCENE" --width 24 --height 8 --spp 1 -q -o "$T/aspect.png"
-  iinfo "$T/aspect.png" | grep -Eq " 24 x +8," || fail "--width 24 --height 8: $(iinfo "$T/aspect.png")"
-fi
+need iinfo openimageio-tools
+expect 0 "$LUMIS" render "$SCENE" --width 24 --spp 1 -q -o "$T/aspect.png"
+iinfo "$T/aspect.png" | grep -Eq " 24 x +24," || fail "--width 24 alone: $(iinfo "$T/aspect.png")"
+expect 0 "$LUMIS" render "$SCENE" --height 20 --spp 1 -q -o "$T/aspect.png"
+iinfo "$T/aspect.png" | grep -Eq " 20 x +20," || fail "--height 20 alone: $(iinfo "$T/aspect.png")"
+expect 0 "$LUMIS" render "$SCENE" --width 24 --height 8 --spp 1 -q -o "$T/aspect.png"
+iinfo "$T/aspect.png" | grep -Eq " 24 x +8," || fail "--width 24 --height 8: $(iinfo "$T/aspect.png")"
 
 # --camera chooses among a glTF file's cameras; an unknown one lists them, and a JSON scene has none to choose.
 expect 2 "$LUMIS" "${R[@]}" --camera 1 -o "$T/c.png"
@@ -80,11 +79,10 @@ has "expected a significance level in [1e-12, 0.5], found 0"
 expect 2 "$LUMIS" diff "$T/a.png" "$T/a.png" --tolerance -1
 has "--tolerance: expected a number >= 0, found -1"
 # A grey image (one channel, Y) compares as R = G = B.
-if command -v oiiotool >/dev/null; then
-  oiiotool "$T/a.png" --ch "Y=R" -o "$T/grey.png" || fail "oiiotool could not write a grey PNG"
-  expect 0 "$LUMIS" diff "$T/grey.png" "$T/grey.png" --threshold 0
-  expect 1 "$LUMIS" diff "$T/grey.png" "$T/a.png" --metric maxabs --threshold 0
-fi
+need oiiotool openimageio-tools
+oiiotool "$T/a.png" --ch "Y=R" -o "$T/grey.png" || fail "oiiotool could not write a grey PNG"
+expect 0 "$LUMIS" diff "$T/grey.png" "$T/grey.png" --threshold 0
+expect 1 "$LUMIS" diff "$T/grey.png" "$T/a.png" --metric maxabs --threshold 0
 
 # A write cut short (a full disk; here a file-size limit, `ulimit -f`, which fails writes the same way) is an error
 # naming the file, exit 1, and leaves neither a short file under the final name nor a temporary one: a PNG render

@@ -4,13 +4,13 @@
 # "const" and deleted every call to it, so for twelve rounds the binary had no prefetch while the code had several.
 # Passes when a prefetcht0 sits in a function that is not a prefetch helper (prefetch_line, prefetch_hit_*: they
 # were inlined), or when such a helper holds one and is called (not prefetches_hit_records, a query of the flag).
-# Deterministic (no false failures). x86-64 with objdump only; otherwise skipped (exit 77).
+# Deterministic (no false failures). x86-64 only; otherwise skipped (exit 77).
 # Usage: prefetch.sh path/to/lumis
 set -uo pipefail
 LUMIS=${1:?usage: prefetch.sh path/to/lumis}
 source "$(dirname "$0")/common.bash"
 [ "$(uname -m)" = x86_64 ] || { echo "skip: not x86-64"; exit 77; }
-command -v objdump >/dev/null || { echo "skip: objdump (binutils) missing"; exit 77; }
+need objdump binutils
 
 objdump -d --no-show-raw-insn -C "$LUMIS" >"$T/asm" || fail "objdump -d $LUMIS failed"
 awk '
