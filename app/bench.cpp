@@ -36,13 +36,6 @@ constexpr size_t kMaxLoggedRays = size_t(1) << 22;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
 // A field of /proc/self/status in bytes (VmRSS, VmHWM); 0 when unavailable.
 size_t proc_status_bytes(const std::string& key) {
   std::ifstream in("/proc/self/status");
@@ -159,20 +152,20 @@ BenchVariantResult aggregate(const std::vector<BenchVariantResult>& runs, const 
     const double shuffled_s = raw_seconds(v, raws[r], false, false, true);
     if (shuffled_s > 0 && runs[r].seconds > 0) shuffled.push_back(shuffled_s / runs[r].seconds);
   }
-  v.seconds = median(wall);
-  v.cpu_seconds = median(cpu);
+  v.seconds = median_of(wall);
+  v.cpu_seconds = median_of(cpu);
   v.samples_per_s = double(v.samples) / std::max(v.seconds, 1e-12);
   v.rays_per_s = double(v.rays) / std::max(v.seconds, 1e-12);
   const double s1 = raw_seconds(v, raw_median, false, false), s16 = raw_seconds(v, raw_median, true, false);
   v.raw_mix_rays_per_s = s1 > 0 ? double(v.rays) / s1 : 0;
   v.raw_mix_packet_rays_per_s = s16 > 0 ? double(v.rays) / s16 : 0;
-  v.ratio = median(ratio[0]);
-  v.ratio_packets = median(ratio[1]);
-  v.ratio_cpu = median(ratio[2]);
-  v.ratio_cpu_packets = median(ratio[3]);
-  v.ratio_own = median(own);
-  v.ratio_shuffled = median(shuffled);
-  v.embree_share = median(share);
+  v.ratio = median_of(ratio[0]);
+  v.ratio_packets = median_of(ratio[1]);
+  v.ratio_cpu = median_of(ratio[2]);
+  v.ratio_cpu_packets = median_of(ratio[3]);
+  v.ratio_own = median_of(own);
+  v.ratio_shuffled = median_of(shuffled);
+  v.embree_share = median_of(share);
   return v;
 }
 
@@ -267,7 +260,7 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
         if (t.rays) own_by_kind[k].push_back(double(t.rays) / std::max(t.wall, 1e-9));
       }
   }
-  for (int k = 0; k < kRayKinds; ++k) res.own_rays_per_s[k] = median(own_by_kind[k]);
+  for (int k = 0; k < kRayKinds; ++k) res.own_rays_per_s[k] = median_of(own_by_kind[k]);
   raw.reset();
   logs.clear();
   res.raw = median_raw(raws);
@@ -275,7 +268,7 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
     res.variants.push_back(aggregate(runs[i], raws, res.raw, replays[i]));
   std::vector<double> single_rates, utilisation, cpu_eff;
   for (const BenchVariantResult& v : single) single_rates.push_back(double(v.samples) / std::max(v.seconds, 1e-12));
-  res.samples_per_s_1 = median(single_rates);
+  res.samples_per_s_1 = median_of(single_rates);
   for (size_t i = 0; i < variants.size(); ++i) {
     if (variants[i] != res.scaling_integrator) continue;
     res.samples_per_s_n = res.variants[i].samples_per_s;
@@ -289,31 +282,31 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
     SceneResult::PacketGain g;
     std::vector<double> rates, gain;
     for (const BenchVariantResult& v : without) rates.push_back(double(v.samples) / std::max(v.seconds, 1e-12));
-    g.samples_per_s_without = median(rates);
+    g.samples_per_s_without = median_of(rates);
     for (size_t i = 0; i < variants.size(); ++i)
       for (size_t r = 0; variants[i] == res.scaling_integrator && r < runs[i].size(); ++r)
         if (runs[i][r].cpu_seconds > 0) gain.push_back(without[r].cpu_seconds / runs[i][r].cpu_seconds);
-    g.speedup_cpu = median(gain);
+    g.speedup_cpu = median_of(gain);
     return g;
   };
   res.camera_packets = packet_gain(no_camera_packets);
   res.shadow_packets = packet_gain(no_shadow_packets);
   res.bounce_packets = packet_gain(no_bounce_packets);
-  res.cpu_utilisation = median(utilisation);
-  res.cpu_efficiency = median(cpu_eff);
+  res.cpu_utilisation = median_of(utilisation);
+  res.cpu_efficiency = median_of(cpu_eff);
   if (res.triangles >= 10000 && res.peak_rss > res.baseline_rss)
     res.bytes_per_triangle = double(res.peak_rss - res.baseline_rss) / double(res.triangles);
 
   std::vector<double> builds;
   for (int r = 0; r < repeat; ++r) builds.push_back(time_bvh_build(scene->geometry));
-  res.bvh_seconds = median(builds);
+  res.bvh_seconds = median_of(builds);
   scene.reset();
   for (int r = 1; r < repeat; ++r) {
     t0 = Clock::now();
     std::unique_ptr<Scene> again = load_scene(which.path);
     loads.push_back(seconds_since(t0));
   }
-  res.load_seconds = median(loads);
+  res.load_seconds = median_of(loads);
 }
 
 std::vector<BenchScene> default_scenes(const BenchOptions& o) {

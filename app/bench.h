@@ -106,6 +106,8 @@ RayKind ray_kind(QueryLog::Call call);
 ReplayTiming replay_queries(const Geometry& geometry, const std::vector<QueryLog>& logs, int threads,
                             bool single_rays, std::optional<RayKind> only = std::nullopt);
 
+/// Median of measurements: the middle one, or the mean of the middle two for an even count; 0 for none.
+double median_of(std::vector<double> values);
 /// Element-wise median of several measurements.
 RawThroughput median_raw(const std::vector<RawThroughput>& runs);
 

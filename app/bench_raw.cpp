@@ -23,16 +23,6 @@ namespace {
 
 constexpr size_t kGrain = 1024;  // rays per task: large enough that scheduling costs nothing measurable
 
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
-
-
 enum class Query { Intersect, Occluded };
 
 // One timing of fn over n rays in tasks of kGrain rays, the whole set traced again until min_seconds have passed
@@ -236,6 +226,13 @@ RawThroughput RawBench::measure() {
   return out;
 }
 
+double median_of(std::vector<double> values) {
+  if (values.empty()) return 0;
+  std::sort(values.begin(), values.end());
+  const size_t m = values.size() / 2;
+  return values.size() % 2 ? values[m] : 0.5 * (values[m - 1] + values[m]);
+}
+
 RawThroughput median_raw(const std::vector<RawThroughput>& runs) {
   if (runs.empty()) return {};
   RawThroughput out = runs.back();
@@ -245,7 +242,7 @@ RawThroughput median_raw(const std::vector<RawThroughput>& runs) {
       w.push_back((r.*field).wall);
       c.push_back((r.*field).cpu);
     }
-    out.*field = {median(w), median(c)};
+    out.*field = {median_of(w), median_of(c)};
   };
   for (Rate RawThroughput::*f : {&RawThroughput::camera1, &RawThroughput::camera16, &RawThroughput::bounce1,
                                  &RawThroughput::bounce16, &RawThroughput::shadow1, &RawThroughput::shadow16,
