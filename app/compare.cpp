@@ -86,20 +86,6 @@ Image rgb_only(const Image& img) {
   return out;
 }
 
-// Top of the shared error scale: the largest 99.5th percentile over variants, so one firefly does not flatten
-// every error picture (larger errors show in the top colour).
-double shared_error_scale(const std::vector<std::vector<float>>& maps) {
-  double scale = 0;
-  for (std::vector<float> m : maps) {
-    m.erase(std::remove_if(m.begin(), m.end(), [](float v) { return !std::isfinite(v); }), m.end());
-    if (m.empty()) continue;
-    const size_t k = std::min(m.size() - 1, static_cast<size_t>(0.995 * static_cast<double>(m.size())));
-    std::nth_element(m.begin(), m.begin() + static_cast<std::ptrdiff_t>(k), m.end());
-    scale = std::max(scale, static_cast<double>(m[k]));
-  }
-  return scale > 0 ? scale : 1e-6;
-}
-
 std::string timing(double seconds) {
   char buf[32];
   std::snprintf(buf, sizeof buf, seconds < 10 ? "%.2fS" : "%.0fS", seconds);

@@ -32,6 +32,9 @@ std::string reference_hash(const std::string& scene_bytes, const RenderSettings&
 /// The seed the reference is rendered with: never the comparison seed, so that nee_mis's samples are not the
 /// reference's first samples (which would make its error look smaller than it is).
 uint32_t reference_seed(uint32_t seed);
+/// Top of the error pictures' shared scale: the largest 99.5th percentile of the maps' finite values, so that one
+/// firefly does not flatten every picture (larger errors show in the top colour); 1e-6 when every value is 0.
+double shared_error_scale(const std::vector<std::vector<float>>& maps);
 
 struct ConvergencePoint {
   uint32_t spp = 0;

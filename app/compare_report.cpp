@@ -1,4 +1,6 @@
 // Parsing of compare's own options, the reference cache key, and report.json / report.md.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <set>
 #include <sstream>
@@ -132,6 +134,18 @@ std::string fnv1a_hex(const std::string& bytes) {
 }
 
 uint32_t reference_seed(uint32_t seed) { return seed ^ 0x9e3779b9u; }
+
+double shared_error_scale(const std::vector<std::vector<float>>& maps) {
+  double scale = 0;
+  for (std::vector<float> m : maps) {
+    m.erase(std::remove_if(m.begin(), m.end(), [](float v) { return !std::isfinite(v); }), m.end());
+    if (m.empty()) continue;
+    const size_t k = std::min(m.size() - 1, static_cast<size_t>(0.995 * static_cast<double>(m.size())));
+    std::nth_element(m.begin(), m.begin() + static_cast<std::ptrdiff_t>(k), m.end());
+    scale = std::max(scale, static_cast<double>(m[k]));
+  }
+  return scale > 0 ? scale : 1e-6;
+}
 
 nlohmann::json reference_key(const RenderSettings& s, uint32_t reference_spp) {
   // Everything the nee_mis reference image depends on besides the scene file (threads and time do not matter:

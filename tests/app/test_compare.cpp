@@ -1,6 +1,9 @@
 // `lumis compare` internals that need no rendering: option parsing, the reference cache key, the reports, the
-// HTML viewer's self-containedness, the montage layout and the log-log plot.
+// HTML viewer's self-containedness, the shared error scale, the montage layout and its crop row, and the log-log plot.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "app/compare.h"
 #include "app/montage.h"
@@ -82,6 +85,24 @@ TEST(CompareReference, HashFollowsWhatChangesTheImage) {
   EXPECT_NE(reference_seed(0), 0u);
   EXPECT_NE(reference_seed(7), 7u);
   EXPECT_EQ(fnv1a_hex(""), "cbf29ce484222325");  // FNV-1a 64 offset basis
+}
+
+// The error pictures share one scale: the worst variant's 99.5th percentile, ignoring NaN and one firefly.
+TEST(CompareReport, ErrorScaleIsTheWorstVariantsHighPercentile) {
+  std::vector<float> good(1000), bad(1000);
+  for (int i = 0; i < 1000; ++i) {
+    good[i] = 0.001f * static_cast<float>(i);  // 0, 0.001, ..., 0.999
+    bad[i] = 0.002f * static_cast<float>(i);
+  }
+  bad[17] = 1e6f;  // a firefly
+  good[3] = NAN;
+  // The 99.5th percentile of n values: the one at index floor(0.995 n) when sorted.
+  EXPECT_FLOAT_EQ(shared_error_scale({good}), 0.001f * 995);  // the NaN removed: 999 values, index 994
+  EXPECT_FLOAT_EQ(shared_error_scale({bad}), 0.002f * 996);   // 0.034 moved to the end as the firefly: index 995
+  EXPECT_FLOAT_EQ(shared_error_scale({good, bad}), 0.002f * 996);
+  EXPECT_FLOAT_EQ(shared_error_scale({bad, good}), 0.002f * 996);
+  EXPECT_EQ(shared_error_scale({std::vector<float>(10, 0.0f)}), 1e-6);  // no error at all: a scale above zero
+  EXPECT_EQ(shared_error_scale({}), 1e-6);
 }
 
 TEST(CompareReport, JsonMarkdownAndSelfContainedHtml) {
@@ -181,6 +202,30 @@ TEST(ComparePictures, MontageAndLogLogPlot) {
     o.exposure = 1;
     const Image brighter = make_montage({{&b, {}}}, o);
     EXPECT_NEAR(brighter.at(6 + 100, 6 + 100, 0), 0.5f, 1e-6);
+  }
+  {  // CropRowShowsTheCropRegion: x 8..11 and y 10..13 (not 10..13 and 8..11) hold the marked pixel (10, 12)
+    Image a = make_canvas(32, 32, Color(0.5f));
+    a.at(10, 12, 1) = 1.0f;  // green 1: no label, outline or background has it
+    MontageOptions o;
+    o.crop_x = 8, o.crop_y = 10, o.crop_w = 4, o.crop_h = 4;
+    const Image m = make_montage({{&a, {"A"}}}, o);
+    // The image at 6x (192 pixels), then below it the crop at 48x (its 4 pixels fill the 192-pixel column): the
+    // marked pixel is its third column and row.
+    int in_tile = 0, in_crop = 0, crop_x0 = m.width, crop_y0 = m.height;
+    for (int y = 0; y < m.height; ++y)
+      for (int x = 0; x < m.width; ++x) {
+        if (m.at(x, y, 1) != 1.0f) continue;
+        if (y < 6 + 192) {
+          ++in_tile;
+        } else {
+          ++in_crop;
+          crop_x0 = std::min(crop_x0, x), crop_y0 = std::min(crop_y0, y);
+        }
+      }
+    EXPECT_EQ(in_tile, 6 * 6);
+    EXPECT_EQ(in_crop, 48 * 48);
+    EXPECT_EQ(crop_x0, 6 + 2 * 48);
+    EXPECT_EQ(crop_y0, m.height - 6 - 192 + 2 * 48);
   }
   {  // LogLogCurvesInTheirColours
     const Color c0 = series_colour(0), c1 = series_colour(1);

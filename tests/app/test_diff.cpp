@@ -235,6 +235,12 @@ TEST(DiffPictures, HeatmapRampAndFont) {
       EXPECT_NEAR(p1[k], mid[k], 1e-6);
     }
   }
+  {  // NonFiniteErrorsShowMagenta: a NaN in the map is not drawn as "no error"
+    const Image h = error_heatmap({NAN, 0.1f}, 2, 1, 0, 0.2);
+    const Color nan_px = h.rgb(6 + 10, 6), ok_px = h.rgb(6 + 64 + 10, 6), half = false_colour(0.5f);
+    EXPECT_EQ(nan_px, Color(1, 0, 1));
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(ok_px[k], half[k], 1e-6);
+  }
   {  // RampBrightensMonotonically
     float prev = -1;
     for (int i = 0; i <= 64; ++i) {

@@ -24,6 +24,35 @@ grep -q "| variant | spp | time (s) | samples/s | rays/s | MSE | relMSE | effici
 grep -q '"convergence"' "$D/report.json" || fail "no convergence series"
 grep -q '"source": "rendered"' "$D/report.json" || fail "reference not rendered"
 grep -Eiq '(src|href)="(https?:)?//' "$D/index.html" && fail "index.html refers to an external resource"
+# The variants are the integrators they are named after: five different images, and on this scene uniform's error
+# is far above nee_mis's (deterministic: fixed seeds, the same image for any thread count).
+for a in "${VARIANTS[@]}"; do
+  for b in "${VARIANTS[@]}"; do
+    [[ "$a" < "$b" ]] || continue
+    expect 1 "$LUMIS" diff "$D/$a.exr" "$D/$b.exr" --threshold 0
+  done
+done
+# Each variant's MSE, relMSE and MAE in report.json are lumis diff's against the reference (relMSE divides by the
+# reference's values, not the variant's), and its convergence series ends at its own spp.
+for v in "${VARIANTS[@]}"; do
+  expect 0 "$LUMIS" diff "$D/$v.exr" "$D/reference.exr" --json
+  cp "$T/out" "$T/diff-$v.json"
+done
+python3 - "$D/report.json" "$T" <<'PY' || fail "report.json's metrics differ from lumis diff's: $(cat "$D/report.json")"
+import json, sys
+report = json.load(open(sys.argv[1]))
+rel = {}
+for v in report["variants"]:
+    d = json.load(open(f"{sys.argv[2]}/diff-{v['name']}.json"))
+    for k in ("mse", "relmse", "mae"):
+        assert abs(v[k] - d[k]) <= 1e-12 * abs(d[k]), (v["name"], k, v[k], d[k])
+    rel[v["name"]] = v["relmse"]
+    # --convergence: 1, 2, 4, 8 spp; the last point is the comparison's own render (same seed, same image).
+    c = v["convergence"]
+    assert [p["spp"] for p in c] == [1, 2, 4, 8], (v["name"], c)
+    assert c[-1]["mse"] == v["mse"] and c[-1]["relmse"] == v["relmse"], (v["name"], c[-1], v)
+assert rel["uniform"] > 2 * rel["nee_mis"], rel
+PY
 
 # The viewer's script runs: it marks the body ready and lists every variant plus the reference.
 CHROMIUM=/usr/bin/chromium
@@ -91,5 +120,65 @@ grep -q "use --integrators" "$T/err" || fail "--integrator refusal: $(cat "$T/er
 grep -q '"settings"' "$D/report.json" || fail "report.json has no settings"
 grep -q '"max_depth": 2' "$D/report.json" || fail "settings lack max_depth"
 grep -q '^Settings: max depth 2' "$D/report.md" || fail "report.md lacks the settings line"
+
+# Without --reference-spp the reference takes 16x the variants' samples (at least 256), and lumis render reproduces
+# it exactly from reference.json's key: nee_mis at that spp with the key's seed (not the variants' seed).
+expect 0 "$LUMIS" compare "$SCENE" --width 32 --height 32 --max-depth 2 --spp 32 --integrators nee_mis -o "$T/ref" -q
+key=$(python3 -c 'import json, sys; k = json.load(open(sys.argv[1]))["key"]; print(k["spp"], k["seed"])' \
+  "$T/ref/reference.json") || fail "reference.json: $(cat "$T/ref/reference.json")"
+read -r ref_spp ref_seed <<<"$key"
+[ "$ref_spp" = 512 ] || fail "reference spp $ref_spp for --spp 32, expected 16 x 32"
+grep -q '"spp": 512' "$T/ref/report.json" || fail "report.json's reference spp: $(cat "$T/ref/report.json")"
+[ "$ref_seed" != 0 ] || fail "the reference shares the variants' seed 0"
+expect 0 "$LUMIS" render "$SCENE" --width 32 --height 32 --max-depth 2 --integrator nee_mis --spp "$ref_spp" \
+  --seed "$ref_seed" -q -o "$T/ref/again.exr"
+expect 0 "$LUMIS" diff "$T/ref/again.exr" "$T/ref/reference.exr" --threshold 0
+
+# Equal time: each variant renders until the budget ends, far past the scene's 64 spp on 8x8 pixels in 0.25 s.
+expect 0 "$LUMIS" compare "$SCENE" --width 8 --height 8 --max-depth 1 --time 0.25 --integrators bsdf,nee_mis \
+  --reference-spp 16 -o "$T/et" -q
+python3 -c '
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["mode"] == "equal-time", r["mode"]
+for v in r["variants"]:
+    assert v["spp"] > 64 and v["seconds"] >= 0.2, (v["name"], v["spp"], v["seconds"])
+' "$T/et/report.json" || fail "equal time: $(cat "$T/et/report.json")"
+# --spp overrides a time budget in the scene file: equal samples.
+python3 -c '
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["render"]["time"] = 5
+json.dump(s, open(sys.argv[2], "w"))
+' "$SCENE" "$T/timed.json"
+expect 0 "$LUMIS" compare "$T/timed.json" --width 8 --height 8 --max-depth 1 --spp 2 --integrators bsdf \
+  --reference-spp 4 -o "$T/timed" -q
+grep -q '"mode": "equal-spp"' "$T/timed/report.json" || fail "--spp over the scene's time: $(cat "$T/timed/report.json")"
+grep -q '"spp": 2,' "$T/timed/report.json" || fail "--spp 2 over the scene's time: $(cat "$T/timed/report.json")"
+
+# The cached reference belongs to one camera of a glTF file: another --camera renders a new one.
+python3 - "$T/cams.gltf" <<'PY'
+import base64, json, struct, sys
+data = struct.pack("<9f", -1, -1, -2, 1, -1, -2, 0, 1, -2)
+gltf = {
+    "asset": {"version": "2.0"},
+    "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+    "bufferViews": [{"buffer": 0, "byteLength": len(data)}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [-1, -1, -2], "max": [1, 1, -2]}],
+    "materials": [{"emissiveFactor": [1, 1, 1]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+    "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.01}}] * 2,
+    "nodes": [{"mesh": 0}, {"camera": 0}, {"camera": 1, "translation": [0.5, 0, 0]}],
+    "scenes": [{"nodes": [0, 1, 2]}],
+    "scene": 0,
+}
+json.dump(gltf, open(sys.argv[1], "w"))
+PY
+CAM=(--width 8 --height 8 --spp 1 --reference-spp 4 --integrators nee_mis -o "$T/cams" -q)
+expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera 0
+expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera 1
+grep -q '"source": "rendered"' "$T/cams/report.json" || fail "reference reused for another camera"
+expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera 1
+grep -q '"source": "cached"' "$T/cams/report.json" || fail "reference not reused for the same camera"
 
 echo "compare.sh: all checks passed"

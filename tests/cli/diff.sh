@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end test of `lumis diff`: exit codes (0 pass, 1 fail, 2 error), JSON output, the z-test and the heatmap,
-# on tiny renders of the built-in scene. Usage: diff.sh path/to/lumis   (exit 77 = skipped)
+# on tiny renders of the built-in scene, and exact values (sRGB decoding, the PSNR peak) on flat images made with
+# oiiotool. Usage: diff.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: diff.sh path/to/lumis}
 source "$(dirname "$0")/common.bash"
@@ -50,4 +51,18 @@ expect 2 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --psnr-peak zero
 # A PNG (decoded from sRGB) and an EXR are comparable; PSNR can use the reference's largest value as its peak.
 expect 0 "$LUMIS" diff "$T/a.png" "$T/a.exr" --psnr-peak max
 grep -q "psnr .*(peak [0-9]" "$T/out" || fail "psnr line: $(cat "$T/out")"
+
+# Exact values on flat images made with oiiotool. An 8-bit PNG holds sRGB codes: code 128 is linear 0.2158605, so it
+# equals an EXR of that value. --psnr-peak max is the reference's largest value (2 here): a difference of 0.5 in
+# one channel of three gives MSE 1/12 and PSNR 10 log10(4 / (1/12)) = 16.8124 dB.
+need oiiotool openimageio-tools
+oiiotool --pattern constant:color=0.5,0.5,0.5 4x4 3 -d uint8 -o "$T/code128.png" || fail "oiiotool: code128.png"
+oiiotool --pattern constant:color=0.2158605,0.2158605,0.2158605 4x4 3 -d float -o "$T/linear.exr" ||
+  fail "oiiotool: linear.exr"
+expect 0 "$LUMIS" diff "$T/code128.png" "$T/linear.exr" --metric maxabs --threshold 1e-6
+oiiotool --pattern constant:color=0.25,0.5,2 4x4 3 -d float -o "$T/peak2.exr" || fail "oiiotool: peak2.exr"
+oiiotool --pattern constant:color=0.25,0.5,1.5 4x4 3 -d float -o "$T/off.exr" || fail "oiiotool: off.exr"
+expect 0 "$LUMIS" diff "$T/off.exr" "$T/peak2.exr" --psnr-peak max --json
+grep -q '"psnr_peak": 2.0,' "$T/out" || fail "--psnr-peak max: $(cat "$T/out")"
+grep -q '"psnr": 16.8124' "$T/out" || fail "PSNR with peak 2: $(cat "$T/out")"
 echo "diff.sh: all checks passed"
