@@ -95,8 +95,9 @@ def main():
     shared = (ROOT.parent / "shared").resolve()
     if shared.is_dir() and not (work / "shared").exists():
         (work / "shared").symlink_to(shared)  # tests find the glTF sample models at ../shared
-    ctest = ["ctest", "--test-dir", "build", "-j", str(os.cpu_count() or 2), "--stop-on-failure", "--timeout",
-             str(args.timeout), "-E", args.exclude]
+    # --output-on-failure: each mutant's log (--work/logs/ID.txt) shows what the first failing test said.
+    ctest = ["ctest", "--test-dir", "build", "-j", str(os.cpu_count() or 2), "--stop-on-failure", "--output-on-failure",
+             "--timeout", str(args.timeout), "-E", args.exclude]
     build = ["ninja", "-C", "build"]
     print(f"building and testing the unmutated copy in {src} ...", flush=True)
     with open(logs / "baseline.txt", "w") as log:
