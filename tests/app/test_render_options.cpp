@@ -1,0 +1,148 @@
+// The render options shared by `lumis render`, `compare` and `bench` (app/render_overrides.h): each one given on the
+// command line replaces its scene-file setting, and only that one; names are checked; options that none of the
+// chosen integrators reads are named in a warning. The command-line parsing itself is in tests/cli/outputs.sh.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "app/render_overrides.h"
+
+using namespace lumis;
+
+namespace {
+
+/// Settings that differ from every value the tests below override to.
+RenderSettings scene_settings() {
+  RenderSettings s;
+  s.width = 400;
+  s.height = 100;  // 4:1
+  return s;
+}
+
+}  // namespace
+
+TEST(RenderOptions, EachOverrideReplacesItsSettingAndNoOther) {
+  const RenderSettings base = scene_settings();
+  {  // nothing given: nothing changes
+    RenderSettings s = base;
+    apply_overrides({}, s);
+    EXPECT_EQ(s.spp, base.spp);
+    EXPECT_EQ(s.width, 400);
+    EXPECT_EQ(s.height, 100);
+  }
+  RenderOverrides o;
+  o.spp = 7;
+  o.seed = 4000000000u;
+  o.max_depth = 2;
+  o.rr_depth = 0;  // 0 (off) is a value, not "not given"
+  o.threads = 3;
+  o.time = 1.5f;
+  o.exposure = -2;
+  o.mis_light_probability = 0.25f;
+  o.integrator = "uniform";
+  o.sampler = "sobol";
+  o.light_selection = "power";
+  o.mis_heuristic = "power";
+  o.uniform_measure = "solid-angle";
+  RenderSettings s = base;
+  apply_overrides(o, s);
+  EXPECT_EQ(s.spp, 7u);
+  EXPECT_EQ(s.seed, 4000000000u);
+  EXPECT_EQ(s.max_depth, 2);
+  EXPECT_EQ(s.rr_depth, 0);
+  EXPECT_EQ(s.threads, 3);
+  EXPECT_EQ(s.time_budget, 1.5f);
+  EXPECT_EQ(s.exposure, -2.0f);
+  EXPECT_EQ(s.mis_light_probability, 0.25f);
+  EXPECT_EQ(s.integrator, "uniform");
+  EXPECT_EQ(s.sampler, SamplerType::Sobol);
+  EXPECT_EQ(s.light_selection, LightSelection::Power);
+  EXPECT_EQ(s.mis_heuristic, MisHeuristic::Power);
+  EXPECT_EQ(s.uniform_measure, UniformMeasure::SolidAngle);
+  EXPECT_EQ(s.width, 400);  // not given: the scene's size
+  EXPECT_EQ(s.height, 100);
+  // The other spellings and values: the scene file's names for the measure, and back to the defaults.
+  o = {};
+  o.uniform_measure = "theta_phi";
+  o.mis_heuristic = "balance";
+  o.sampler = "independent";
+  o.light_selection = "uniform";
+  apply_overrides(o, s);
+  EXPECT_EQ(s.uniform_measure, UniformMeasure::ThetaPhi);
+  EXPECT_EQ(s.mis_heuristic, MisHeuristic::Balance);
+  EXPECT_EQ(s.sampler, SamplerType::Independent);
+  EXPECT_EQ(s.light_selection, LightSelection::Uniform);
+  o = {};
+  o.uniform_measure = "solid_angle";
+  apply_overrides(o, s);
+  EXPECT_EQ(s.uniform_measure, UniformMeasure::SolidAngle);
+}
+
+TEST(RenderOptions, WidthOrHeightAloneKeepsTheAspectRatio) {
+  const auto size = [](std::optional<int> w, std::optional<int> h) {
+    RenderSettings s = scene_settings();  // 400 x 100
+    RenderOverrides o;
+    o.width = w;
+    o.height = h;
+    apply_overrides(o, s);
+    return std::pair{s.width, s.height};
+  };
+  EXPECT_EQ(size(200, std::nullopt), (std::pair{200, 50}));
+  EXPECT_EQ(size(std::nullopt, 50), (std::pair{200, 50}));
+  EXPECT_EQ(size(30, std::nullopt), (std::pair{30, 8}));   // 7.5 rounds to 8
+  EXPECT_EQ(size(2, std::nullopt), (std::pair{2, 1}));     // never below one pixel
+  EXPECT_EQ(size(64, 64), (std::pair{64, 64}));            // both given: as given
+  EXPECT_EQ(size(std::nullopt, 16384), (std::pair{16384, 16384}));  // clamped to the largest side
+}
+
+TEST(RenderOptions, UnknownNamesAreErrorsListingTheValidOnes) {
+  const auto message = [](RenderOverrides o) {
+    RenderSettings s;
+    try {
+      apply_overrides(o, s);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  RenderOverrides o;
+  o.integrator = "photon";
+  EXPECT_EQ(message(o), "--integrator: unknown integrator 'photon' (valid: uniform, bsdf, light, mis, nee_mis)");
+  o = {};
+  o.sampler = "halton";
+  EXPECT_EQ(message(o), "--sampler: unknown sampler 'halton' (valid: independent, stratified, sobol)");
+  o = {};
+  o.light_selection = "random";
+  EXPECT_EQ(message(o), "--light-selection: unknown strategy 'random' (valid: uniform, power, importance)");
+  o = {};
+  o.mis_heuristic = "max";
+  EXPECT_EQ(message(o), "--mis-heuristic: unknown heuristic 'max' (valid: balance, power)");
+  o = {};
+  o.uniform_measure = "area";
+  EXPECT_EQ(message(o), "--uniform-measure: unknown measure 'area' (valid: theta-phi, solid-angle)");
+}
+
+TEST(RenderOptions, OptionsNoChosenIntegratorReadsAreNamed) {
+  RenderOverrides o;
+  o.mis_light_probability = 0.3f;
+  o.uniform_measure = "solid-angle";
+  o.mis_heuristic = "power";
+  o.light_selection = "power";
+  EXPECT_EQ(unused_overrides(o, {"bsdf"}),
+            (std::vector<std::string>{
+                "--mis-light-probability only affects --integrator mis; ignored for bsdf",
+                "--uniform-measure only affects --integrator uniform; ignored for bsdf",
+                "--mis-heuristic only affects mis and nee_mis; ignored for bsdf",
+                "--light-selection only affects light, mis and nee_mis; ignored for bsdf"}));
+  EXPECT_EQ(unused_overrides(o, {"nee_mis"}),
+            (std::vector<std::string>{
+                "--mis-light-probability only affects --integrator mis; ignored for nee_mis",
+                "--uniform-measure only affects --integrator uniform; ignored for nee_mis"}));
+  EXPECT_TRUE(unused_overrides(o, {"uniform", "mis"}).empty());
+  EXPECT_EQ(unused_overrides(o, {"light", "uniform"}),
+            (std::vector<std::string>{
+                "--mis-light-probability only affects --integrator mis; ignored for light, uniform",
+                "--mis-heuristic only affects mis and nee_mis; ignored for light, uniform"}));
+  EXPECT_TRUE(unused_overrides({}, {"bsdf"}).empty());
+}
