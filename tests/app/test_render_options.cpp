@@ -3,8 +3,11 @@
 // chosen integrators reads are named in a warning. The command-line parsing itself is in tests/cli/outputs.sh.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app/render_overrides.h"
 
