@@ -100,7 +100,10 @@ TEST(RenderOptions, WidthOrHeightAloneKeepsTheAspectRatio) {
 }
 
 TEST(RenderOptions, UnknownNamesAreErrorsListingTheValidOnes) {
-  const auto message = [](RenderOverrides o) {
+  // The message apply_overrides throws when only `field` is given, set to `value`.
+  const auto message = [](std::optional<std::string> RenderOverrides::*field, const char* value) {
+    RenderOverrides o;
+    o.*field = value;
     RenderSettings s;
     try {
       apply_overrides(o, s);
@@ -109,21 +112,16 @@ TEST(RenderOptions, UnknownNamesAreErrorsListingTheValidOnes) {
     }
     return std::string("(no error)");
   };
-  RenderOverrides o;
-  o.integrator = "photon";
-  EXPECT_EQ(message(o), "--integrator: unknown integrator 'photon' (valid: uniform, bsdf, light, mis, nee_mis)");
-  o = {};
-  o.sampler = "halton";
-  EXPECT_EQ(message(o), "--sampler: unknown sampler 'halton' (valid: independent, stratified, sobol)");
-  o = {};
-  o.light_selection = "random";
-  EXPECT_EQ(message(o), "--light-selection: unknown strategy 'random' (valid: uniform, power, importance)");
-  o = {};
-  o.mis_heuristic = "max";
-  EXPECT_EQ(message(o), "--mis-heuristic: unknown heuristic 'max' (valid: balance, power)");
-  o = {};
-  o.uniform_measure = "area";
-  EXPECT_EQ(message(o), "--uniform-measure: unknown measure 'area' (valid: theta-phi, solid-angle)");
+  EXPECT_EQ(message(&RenderOverrides::integrator, "photon"),
+            "--integrator: unknown integrator 'photon' (valid: uniform, bsdf, light, mis, nee_mis)");
+  EXPECT_EQ(message(&RenderOverrides::sampler, "halton"),
+            "--sampler: unknown sampler 'halton' (valid: independent, stratified, sobol)");
+  EXPECT_EQ(message(&RenderOverrides::light_selection, "random"),
+            "--light-selection: unknown strategy 'random' (valid: uniform, power, importance)");
+  EXPECT_EQ(message(&RenderOverrides::mis_heuristic, "max"),
+            "--mis-heuristic: unknown heuristic 'max' (valid: balance, power)");
+  EXPECT_EQ(message(&RenderOverrides::uniform_measure, "area"),
+            "--uniform-measure: unknown measure 'area' (valid: theta-phi, solid-angle)");
 }
 
 TEST(RenderOptions, OptionsNoChosenIntegratorReadsAreNamed) {
