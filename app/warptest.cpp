@@ -8,6 +8,7 @@
 #include <functional>
 #include <iomanip>
 #include <optional>
+#include <sstream>
 
 #include "core/chi2.h"
 #include "core/file_ext.h"
@@ -223,7 +224,15 @@ int run_warptest(const std::string& name, float param, uint64_t samples, const s
   }
   const double k = it->stretch ? it->stretch(param) : 1.0;
   const Warp warp = k > 1 ? stretched(it->make(param), k) : it->make(param);
+  std::ostringstream title, cells_note;
+  title << name;
+  if (it->param_help) title << " (" << it->param_help << " = " << param << ")";
+  if (k > 1) cells_note << " of directions stretched by " << k << " in x and y (so that the lobe spans the cells)";
+  return check_warp(warp, title.str(), cells_note.str(), samples, out_png, out, err);
+}
 
+int check_warp(const Warp& warp, const std::string& title, const std::string& cells_note, uint64_t samples,
+               const std::string& out_png, std::ostream& out, std::ostream& err) {
   DirectionalTest cfg;
   if (samples > 0) cfg.samples = samples;
   const DirectionalHistogram h = directional_histogram(
@@ -236,19 +245,15 @@ int run_warptest(const std::string& name, float param, uint64_t samples, const s
   // No statistic (dof 0) without an impossible sample (infinite statistic): too few samples for any verdict on
   // the sampler, a usage error.
   if (r.dof == 0 && !std::isinf(r.statistic)) {
-    err << "warptest: " << cfg.samples << " samples are too few for " << name << ": " << r.message;
+    err << "warptest: " << cfg.samples << " samples are too few for " << title << ": " << r.message;
     if (const uint64_t need = samples_to_decide(h.expected, cfg.samples))
       err << "; use --samples " << need << " or more";
     err << '\n';
     return 2;
   }
 
-  out << "warptest " << name;
-  if (it->param_help) out << " (" << it->param_help << " = " << param << ")";
-  out << ": " << cfg.samples << " samples in " << cfg.cos_theta_bins << " x " << cfg.phi_bins
-      << " (cos theta, phi) cells";
-  if (k > 1) out << " of directions stretched by " << k << " in x and y (so that the lobe spans the cells)";
-  out << ", seed " << cfg.seed << '\n';
+  out << "warptest " << title << ": " << cfg.samples << " samples in " << cfg.cos_theta_bins << " x " << cfg.phi_bins
+      << " (cos theta, phi) cells" << cells_note << ", seed " << cfg.seed << '\n';
   out << std::setprecision(6) << "  chi-square statistic " << r.statistic << ", dof " << r.dof << ", p-value "
       << r.p_value << ", alpha " << r.significance << '\n';
   out << "  " << (r.passed ? "PASSED" : "FAILED") << ": " << r.message << '\n';

@@ -38,4 +38,11 @@ std::vector<std::string> warptest_names();
 int run_warptest(const std::string& name, float param, uint64_t samples, const std::string& out_png,
                  std::ostream& out, std::ostream& err);
 
+/// The test run_warptest runs once it has found and checked its warp, for any `warp` (solid-angle pdf, world frame
+/// = the cells' frame): `title` names it in the report, `cells_note` follows the cells' description, and `out_png`
+/// (empty: none) must already be known to be writable. Returns 0 pass, 1 fail, 2 too few samples to decide, 3 the
+/// picture could not be written.
+int check_warp(const Warp& warp, const std::string& title, const std::string& cells_note, uint64_t samples,
+               const std::string& out_png, std::ostream& out, std::ostream& err);
+
 }  // namespace lumis
