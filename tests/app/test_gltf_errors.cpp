@@ -82,6 +82,8 @@ TEST_F(GltfFiles, DeeplyNestedJsonIsRefusedNotACrash) {
                {"deep.glb: the JSON chunk nests deeper than 512 levels"});
   EXPECT_EQ(load_gltf(with_extras("deep511.gltf", nested(511))).meshes.size(), 1u);  // 512 levels in all
   EXPECT_EQ(load_gltf(with_extras("quoted.gltf", "\"" + std::string(20000, '[') + "\\\"{\"")).meshes.size(), 1u);
+  // An escaped quote does not end the string: the brackets after it are still inside.
+  EXPECT_EQ(load_gltf(with_extras("escaped.gltf", "\"\\\"" + std::string(20000, '[') + "\"")).meshes.size(), 1u);
 }
 
 TEST_F(GltfFiles, ErrorsNameTheGltfPath) {

@@ -2,13 +2,16 @@
 // (bad input: test_scene_loader_errors.cpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <regex>
 #include <string>
 #include <tuple>
+#include <utility>
 
 #include "core/image_io.h"
+#include "tests/app/png_test_util.h"
 #include "tests/app/scene_loader_test_util.h"
 
 namespace lumis {
@@ -123,6 +126,22 @@ TEST_F(SceneLoader, MissingSectionsTakeRenderSettingsDefaultsAndAFramingCamera) 
   const float dist = length(scene->camera.from);
   EXPECT_GT(dist, 1.0f / std::sin(20 * kPi / 180));
   EXPECT_GT(scene->camera.from.z, 0);
+}
+
+// In a tall image the horizontal field of view is the narrower one: the framing camera fits the scene's bounding
+// sphere to it, so the sides are not cropped (and in a wide one, to the vertical field of view).
+TEST_F(SceneLoader, FramingCameraFitsTheNarrowerFieldOfView) {
+  for (const auto& [w, h] : {std::pair{100, 400}, std::pair{400, 100}}) {
+    const std::string film = R"("film": {"width": )" + std::to_string(w) + R"(, "height": )" + std::to_string(h) + "}";
+    const auto scene = load_scene(write_scene(scene_with(film)));
+    const Camera& c = scene->camera;
+    const float half_y = 0.5f * c.fov_y_degrees * kPi / 180;
+    const float half_x = std::atan(std::tan(half_y) * float(w) / float(h));
+    // The unit sphere's bounding box [-1, 1]^3 has a bounding sphere of radius sqrt(3) about the origin.
+    const float seen = std::asin(std::sqrt(3.0f) / length(c.from - c.to));
+    EXPECT_LT(seen, std::min(half_x, half_y)) << w << " x " << h;
+    EXPECT_GT(seen, 0.9f * std::min(half_x, half_y)) << w << " x " << h << ": framed, not lost in the distance";
+  }
 }
 
 TEST_F(SceneLoader, RenderKeysAreRead) {
@@ -292,6 +311,22 @@ TEST_F(SceneLoader, GltfEmissiveMeshesBecomeMeshLightsAndNoSkyIsAdded) {
   EXPECT_EQ(lit, scene->lights.size());
 }
 
+// A glTF camera's aspectRatio sets the image's shape: 512 pixels across, the height following (16:9 -> 512 x 288).
+TEST_F(SceneLoader, GltfCameraAspectRatioSetsTheImageHeight) {
+  const auto scene = load_scene(kAssets + "/gltf/MultiUVTest/glTF/MultiUVTest.gltf");
+  EXPECT_EQ(scene->settings.width, 512);
+  EXPECT_EQ(scene->settings.height, 288);
+}
+
+// Emission read from a texture is usually a decal (the helmet's visor display), too weak to light a model: a file
+// whose only emission is textured gets the white sky too, and its textured emitters stay lights.
+TEST_F(SceneLoader, GltfWithOnlyTexturedEmissionStillGetsTheSky) {
+  const auto scene = load_scene(kAssets + "/gltf/DamagedHelmet/glTF-Binary/DamagedHelmet.glb");
+  ASSERT_GE(scene->environment, 0);
+  EXPECT_TRUE(scene->lights[scene->environment]->is_environment());
+  EXPECT_GT(scene->lights.size(), 1u);
+}
+
 // A quad's texture coordinates, as the scene format documents them: (0, 0) at origin, (1, 0) at origin + edge_u,
 // (0, 1) at origin + edge_v; a hit at origin + 0.8 edge_u + 0.1 edge_v reads (0.8, 0.1).
 TEST_F(SceneLoader, QuadTextureCoordinatesFollowItsEdges) {
@@ -328,6 +363,24 @@ TEST_F(SceneLoader, EnvironmentMapScaleAndRotationAreApplied) {
     EXPECT_NEAR(a.z, e.z, 1e-6f);
     EXPECT_GT(std::abs(e.x - p.x), 0.05f) << "the test's map reads the same without scale and rotation";
   }
+}
+
+// One image file used as data (linear) by one material and as colour (sRGB) by another is decoded once for each use:
+// a grey PNG of code 128 is 0.502 as roughness and metalness but 0.2159 as an albedo.
+TEST_F(SceneLoader, AFileUsedAsDataAndAsColourIsDecodedForEach) {
+  const unsigned char grey[4 * 3] = {128, 128, 128, 128, 128, 128, 128, 128, 128, 128, 128, 128};
+  ASSERT_TRUE(test::write_png((test_dir() / "grey.png").string(), 2, 2, 3, grey));
+  // The materials load in key order: "a" reads the file first, as data.
+  const auto scene = load_scene(write_scene(
+      R"({"materials": {"a": {"type": "pbr", "metallic_roughness_texture": "grey.png"},
+                        "d": {"type": "diffuse", "albedo": [1, 1, 1], "texture": "grey.png"}},
+          "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "d"}]})"));
+  ASSERT_EQ(scene->materials.size(), 2u);
+  Hit hit;
+  hit.uv[0] = {0.5f, 0.5f};
+  const Color albedo = scene->materials[1]->albedo(hit);
+  EXPECT_NEAR(albedo.x, 0.2158605f, 1e-5f);
+  EXPECT_NEAR(albedo.z, 0.2158605f, 1e-5f);
 }
 
 TEST_F(SceneLoader, EnvironmentMapAndTexturesLoad) {

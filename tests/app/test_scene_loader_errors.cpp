@@ -49,6 +49,13 @@ TEST_F(SceneLoaderErrors, DuplicateKey) {
   EXPECT_SCENE_ERROR(scene_with(R"("film": {"width": 64, "width": 32})"), "/film/width", "duplicate key");
 }
 
+// A key holding "~" or "/" is escaped in the pointer as RFC 6901 says: "~" as "~0", "/" as "~1".
+TEST_F(SceneLoaderErrors, PointerEscapesTildeAndSlashInKeys) {
+  EXPECT_SCENE_ERROR(scene_with_material(R"("a~b/c~1": {"type": "diffuse", "albedo": [2, 0, 0]})"),
+                     "/materials/a~0b~1c~01/albedo/0", "expected a number in [0, 1]");
+  EXPECT_SCENE_ERROR(scene_with(R"("film": {"width": 64, "~/": 1})"), "/film/~0~1", "unknown key \"~/\"");
+}
+
 // Errors: structure, types and unknown keys.
 
 TEST_F(SceneLoaderErrors, TopLevelMustBeAnObject) {
@@ -118,6 +125,16 @@ TEST_F(SceneLoaderErrors, ProbabilityOutOfRange) {
 
 TEST_F(SceneLoaderErrors, CameraWithoutDirection) {
   EXPECT_SCENE_ERROR(scene_with(R"("camera": {"from": [0,0,5], "to": [0,0,5]})"), "/camera/to", "must differ");
+}
+
+// An "up" along the viewing direction leaves the image's orientation undefined (its frame would be NaN).
+TEST_F(SceneLoaderErrors, CameraUpAlongTheViewingDirection) {
+  EXPECT_SCENE_ERROR(scene_with(R"("camera": {"from": [0,5,0], "to": [0,0,0]})"), "/camera/to",
+                     "\"up\" must not be zero or parallel to the viewing direction");
+  EXPECT_SCENE_ERROR(scene_with(R"("camera": {"from": [0,0,5], "to": [0,0,0], "up": [0,0,-2]})"), "/camera/up",
+                     "parallel to the viewing direction");
+  EXPECT_SCENE_ERROR(scene_with(R"("camera": {"from": [0,0,5], "to": [0,0,0], "up": [0,0,0]})"), "/camera/up",
+                     "must not be zero");
 }
 
 TEST_F(SceneLoaderErrors, FieldOfViewOutOfRange) {

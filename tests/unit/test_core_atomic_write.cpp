@@ -1,6 +1,7 @@
 // write_file_atomically: a file is written whole or not at all, and a failure says why without naming the
 // temporary file. A file-size limit stands in for a full disk (tests/support/file_size_limit.h).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -68,4 +69,14 @@ TEST_F(AtomicWrite, AMissingFolderOrAFolderInTheWayIsAnErrorNamingNoTemporary) {
   EXPECT_EQ(why.rfind("cannot rename the finished temporary file into place: ", 0), 0u) << why;
   EXPECT_EQ(why.find("tmp-"), std::string::npos) << why;
   EXPECT_EQ(listing(), std::vector<std::string>{"taken"});
+}
+
+// A run killed mid-write (SIGKILL, power loss) leaves its temporary file; a later process may get the same pid and so
+// the same temporary name. Its write must replace the leftover whole, not overwrite its start and keep its tail.
+TEST_F(AtomicWrite, ALongerLeftoverTemporaryDoesNotKeepItsTail) {
+  const std::string leftover = file("out.txt") + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
+  std::ofstream(leftover, std::ios::binary) << std::string(1000, 'z');
+  EXPECT_EQ(write_file_atomically(file("out.txt"), "short"), "");
+  EXPECT_EQ(content("out.txt"), "short");
+  EXPECT_EQ(listing(), std::vector<std::string>{"out.txt"});
 }
