@@ -2,12 +2,16 @@
 // Each run draws 200k samples with the tool's fixed seed at alpha = 0.01 (an exact warp fails 1% of seeds).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
+#include <string>
 
 #include "app/warptest.h"
 #include "core/chi2.h"
+#include "core/frame.h"
 #include "core/image_io.h"
 #include "core/warp.h"
 
@@ -147,6 +151,62 @@ TEST(Warptest, UnwritablePictureIsRefusedBeforeSampling) {
     EXPECT_EQ(out.str(), "") << png;
     EXPECT_NE(err.str().find(png), std::string::npos) << err.str();
   }
+  std::filesystem::remove_all(dir);
+}
+
+// A cosine lobe about an axis off every symmetry of the cells (no two cells expect the same count), with its density.
+Warp tilted_cosine() {
+  const Frame f = Frame::from_normal(normalize(Vec3(0.3f, 0.5f, 0.8f)));
+  return {[=](Vec2 u) -> std::optional<Vec3> { return f.to_world(sample_cosine_hemisphere(u)); },
+          [=](Vec3 w) { return std::max(0.0, double(dot(w, f.n))) / kPi; }};
+}
+
+// A sampler that does not match its density FAILS with exit code 1, which CI and scripts act on.
+TEST(Warptest, AWrongWarpFails) {
+  const Warp right = tilted_cosine();
+  std::ostringstream out, err;
+  EXPECT_EQ(check_warp(right, "tilted", "", 200'000, "", out, err), 0) << out.str() << err.str();
+  EXPECT_NE(out.str().find("warptest tilted: 200000 samples in 40 x 80 (cos theta, phi) cells, seed 1"),
+            std::string::npos) << out.str();
+  const Warp wrong{right.sample, [](Vec3 w) { return double(uniform_hemisphere_pdf(w)); }};
+  out.str("");
+  EXPECT_EQ(check_warp(wrong, "tilted", "", 200'000, "", out, err), 1) << out.str() << err.str();
+  EXPECT_NE(out.str().find("FAILED"), std::string::npos) << out.str();
+}
+
+// The count "use --samples N" suggests decides (two cells expect 5 or more), and a tenth fewer does not.
+TEST(Warptest, TheSuggestedSampleCountDecides) {
+  const Warp w = tilted_cosine();
+  std::ostringstream out, err;
+  ASSERT_EQ(check_warp(w, "tilted", "", 100, "", out, err), 2) << out.str() << err.str();
+  const size_t at = err.str().find("use --samples ");
+  ASSERT_NE(at, std::string::npos) << err.str();
+  const uint64_t need = std::stoull(err.str().substr(at + 14));
+  err.str("");
+  EXPECT_NE(check_warp(w, "tilted", "", need, "", out, err), 2) << need << ": " << err.str();
+  EXPECT_EQ(check_warp(w, "tilted", "", need * 9 / 10, "", out, err), 2) << need;
+}
+
+// The picture: observed counts on the left, expected on the right, cos theta = 1 (the pole) at the top. Samples all
+// within a cap about the pole against a uniform density: the left panel is lit in its top rows only, the right one
+// evenly.
+TEST(Warptest, PictureShowsObservedLeftExpectedRightPoleOnTop) {
+  const auto dir = temp_dir();
+  const std::string png = (dir / "cap.png").string();
+  const Warp w{[](Vec2 u) -> std::optional<Vec3> { return sample_spherical_cap(u, 0.9f); },
+               [](Vec3 d) { return double(uniform_hemisphere_pdf(d)); }};
+  std::ostringstream out;
+  EXPECT_EQ(check_warp(w, "cap", "", 200'000, png, out, out), 1) << out.str();
+  const Image img = read_image(png);
+  ASSERT_EQ(img.width, 2 * 80 * 8 + 16);
+  // Pixel rows 0-7 show cos theta in [0.95, 1], rows 152-159 cos theta in [0, 0.05) (the last above the horizon).
+  const int right = 80 * 8 + 16, top = 4, low = 19 * 8 + 4, last = img.height - 4;
+  const auto lum = [&](int x, int y) { return img.at(x, y, 0) + img.at(x, y, 1) + img.at(x, y, 2); };
+  EXPECT_GT(lum(4, top), 0.1f);                    // observed: the cap is in the top row
+  EXPECT_EQ(lum(4, low), 0.0f);                    // observed: nothing below the cap
+  EXPECT_GT(lum(right + 4, top), 0.0f);            // expected: uniform over the upper hemisphere
+  EXPECT_NEAR(lum(right + 4, low), lum(right + 4, top), 0.03f);  // one 8-bit code apart at most
+  EXPECT_EQ(lum(right + 4, last), 0.0f);           // expected: nothing below the horizon
   std::filesystem::remove_all(dir);
 }
 
