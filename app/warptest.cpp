@@ -151,11 +151,21 @@ Image histogram_picture(const DirectionalHistogram& h, int nz, int np) {
   return img;
 }
 
-// Samples that give two cells an expected count of 5 (the fewest the chi-square test decides with); 0 when no number
-// does (the pdf lies in one cell).
-uint64_t samples_to_decide(std::vector<double> expected, uint64_t samples) {
-  std::partial_sort(expected.begin(), expected.begin() + 2, expected.end(), std::greater<>());
-  return expected[1] > 0 ? static_cast<uint64_t>(std::ceil(5.0 * static_cast<double>(samples) / expected[1])) : 0;
+// The fewest samples the chi-square test decides with, from the expected counts at `samples`; 0 when no number does
+// (the pdf lies in one cell). The test needs two bins expecting 5 or more after pooling the cells that expect less:
+// the fullest cell, and all the others together (on their own or pooled), each expecting 5.
+uint64_t samples_to_decide(const std::vector<double>& expected, uint64_t samples) {
+  const size_t top_cell = static_cast<size_t>(std::max_element(expected.begin(), expected.end()) - expected.begin());
+  double rest = 0;
+  for (size_t i = 0; i < expected.size(); ++i)
+    if (i != top_cell) rest += expected[i];
+  const double top = expected[top_cell];
+  const double least = std::min(top, rest);
+  if (!(least > 0)) return 0;
+  const double per_sample = least / static_cast<double>(samples);
+  auto n = static_cast<uint64_t>(std::ceil(5.0 / per_sample));
+  while (static_cast<double>(n) * per_sample < 5.0 * (1 + 1e-9)) ++n;  // a margin for the counts' own rounding
+  return n;
 }
 
 }  // namespace
