@@ -152,9 +152,10 @@ Image histogram_picture(const DirectionalHistogram& h, int nz, int np) {
 }
 
 // The fewest samples the chi-square test decides with, from the expected counts at `samples`; 0 when no number does
-// (the pdf lies in one cell). The test needs two bins expecting 5 or more after pooling the cells that expect less:
+// (the pdf lies in one cell) or only one beyond 10^18. The test needs two bins expecting 5 or more after pooling the cells that expect less:
 // the fullest cell, and all the others together (on their own or pooled), each expecting 5.
 uint64_t samples_to_decide(const std::vector<double>& expected, uint64_t samples) {
+  if (expected.empty()) return 0;
   const size_t top_cell = static_cast<size_t>(std::max_element(expected.begin(), expected.end()) - expected.begin());
   double rest = 0;
   for (size_t i = 0; i < expected.size(); ++i)
@@ -163,6 +164,7 @@ uint64_t samples_to_decide(const std::vector<double>& expected, uint64_t samples
   const double least = std::min(top, rest);
   if (!(least > 0)) return 0;
   const double per_sample = least / static_cast<double>(samples);
+  if (!(5.0 / per_sample < 1e18)) return 0;  // beyond any count a run could draw (and uint64_t)
   auto n = static_cast<uint64_t>(std::ceil(5.0 / per_sample));
   while (static_cast<double>(n) * per_sample < 5.0 * (1 + 1e-9)) ++n;  // a margin for the counts' own rounding
   return n;
