@@ -19,14 +19,16 @@ void Film::add(int x, int y, Color radiance, const AovSample* aov) {
     p.sum_sq[c] += static_cast<double>(radiance[c]) * radiance[c];
   }
   ++p.n;
-  if (aov) {
-    // Running means of the auxiliary values.
-    const float w = 1.0f / static_cast<float>(p.n);
+  // Running means of the auxiliary values, over the samples whose AOVs are all finite: a sample with a non-finite
+  // value is left out of every AOV's mean (and its count), not averaged in as zero.
+  if (aov && is_finite(aov->albedo) && is_finite(aov->normal) && std::isfinite(aov->depth)) {
+    ++p.aov_n;
+    const float w = 1.0f / static_cast<float>(p.aov_n);
     for (int c = 0; c < 3; ++c) {
-      if (std::isfinite(aov->albedo[c])) p.albedo[c] += (aov->albedo[c] - p.albedo[c]) * w;
-      if (std::isfinite(aov->normal[c])) p.normal[c] += (aov->normal[c] - p.normal[c]) * w;
+      p.albedo[c] += (aov->albedo[c] - p.albedo[c]) * w;
+      p.normal[c] += (aov->normal[c] - p.normal[c]) * w;
     }
-    if (std::isfinite(aov->depth)) p.depth += (aov->depth - p.depth) * w;
+    p.depth += (aov->depth - p.depth) * w;
   }
 }
 

@@ -30,7 +30,8 @@ class Film {
   int height() const { return height_; }
   /// Whether any AOV is kept (when not, renderers need not compute AovSamples).
   bool has_aovs() const { return options_.albedo || options_.normal || options_.depth; }
-  /// Add one radiance sample to pixel (x, y). Non-finite samples are dropped and counted.
+  /// Add one radiance sample to pixel (x, y). Non-finite samples are dropped and counted; an AOV sample with any
+  /// non-finite value is left out of the AOV means.
   void add(int x, int y, Color radiance, const AovSample* aov = nullptr);
   /// Samples accumulated in pixel (x, y).
   uint32_t count(int x, int y) const { return px_[index(x, y)].n; }
@@ -50,6 +51,7 @@ class Film {
     float albedo[3] = {0, 0, 0}, normal[3] = {0, 0, 0};
     float depth = 0;
     uint32_t n = 0, dropped = 0;
+    uint32_t aov_n = 0;  // samples in the AOV means
   };
   size_t index(int x, int y) const { return static_cast<size_t>(y) * width_ + x; }
   int width_, height_;

@@ -67,13 +67,29 @@ TEST(Film, AovChannelsAreTheMeansOfTheirSamples) {
   EXPECT_NEAR(channel("Z"), 3.0f, 1e-6f);
 }
 
-TEST(Film, AovsIgnoreNonFiniteValues) {
-  Film film(1, 1, FilmOptions{true, true, true, true});
+// A sample with any non-finite AOV value is left out of the AOV means (and of their count), whichever comes first;
+// its radiance still counts. Counting it, as the AOVs once did, would average a zero into the mean: 0.25, not 0.5.
+TEST(Film, AovsLeaveOutSamplesWithNonFiniteValues) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  AovSample good{Color(0.5f), Vec3(0, 0, 1), 2.0f}, bad{Color(nan), Vec3(nan, 0, 1), nan};
-  film.add(0, 0, Color(1.0f), &good);
-  film.add(0, 0, Color(1.0f), &bad);
-  for (float v : film.to_image().data) EXPECT_TRUE(std::isfinite(v));
+  const AovSample good{Color(0.5f), Vec3(0, 0, 1), 2.0f};
+  const AovSample bad_all{Color(nan), Vec3(nan, 0, 1), nan};
+  const AovSample bad_depth{Color(0.9f), Vec3(1, 0, 0), std::numeric_limits<float>::infinity()};
+  for (const AovSample* bad : {&bad_all, &bad_depth}) {
+    Film film(1, 1, FilmOptions{true, true, true, true});
+    film.add(0, 0, Color(1.0f), bad);
+    film.add(0, 0, Color(1.0f), &good);
+    film.add(0, 0, Color(1.0f), bad);
+    EXPECT_EQ(film.count(0, 0), 3u);
+    const Image img = film.to_image();
+    for (float v : img.data) EXPECT_TRUE(std::isfinite(v));
+    // R G B, variance.RGB, albedo.RGB, N.XYZ, Z
+    ASSERT_EQ(img.channels, 13);
+    for (int c = 6; c < 9; ++c) EXPECT_FLOAT_EQ(img.at(0, 0, c), 0.5f) << img.channel_names[c];
+    EXPECT_FLOAT_EQ(img.at(0, 0, 9), 0.0f);
+    EXPECT_FLOAT_EQ(img.at(0, 0, 10), 0.0f);
+    EXPECT_FLOAT_EQ(img.at(0, 0, 11), 1.0f);
+    EXPECT_FLOAT_EQ(img.at(0, 0, 12), 2.0f);
+  }
 }
 
 }  // namespace
