@@ -10,7 +10,7 @@
 #include <memory>
 #include <sstream>
 
-#include "app/cli.h"
+#include "app/commands.h"
 #include "app/diff.h"
 #include "app/montage.h"
 #include "app/plot.h"
@@ -25,18 +25,6 @@ namespace lumis {
 namespace fs = std::filesystem;
 
 namespace {
-
-struct CompareArgs {
-  std::string scene;
-  std::string output;
-  std::string integrators = "uniform,bsdf,light,mis,nee_mis";
-  std::string reference;
-  std::optional<uint32_t> reference_spp;
-  std::string crop;
-  bool convergence = false;
-  bool quiet = false;
-  RenderOverrides overrides;
-};
 
 /// Usage errors found after parsing (bad lists, crop outside the image, mismatched reference).
 struct UsageError : std::runtime_error {
@@ -116,6 +104,8 @@ Image read_reference(const std::string& path, const RenderSettings& s, const std
   rgb_channels(reference, path);
   return reference;
 }
+
+}  // namespace
 
 int run_compare(const CompareArgs& args) {
   const std::string scene_path = args.scene.empty() ? default_scene_path() : args.scene;
@@ -322,37 +312,6 @@ int run_compare(const CompareArgs& args) {
   log("wrote " + (dir / "index.html").string() + ", report.md, report.json, montage.png");
   if (!args.quiet) std::cout << report_markdown(report);
   return 0;
-}
-
-}  // namespace
-
-void register_compare_command(CLI::App& app, int& exit_code) {
-  auto args = std::make_shared<CompareArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "compare", "Render a scene with several integrators at equal spp (--spp) or equal time (--time) and compare "
-                 "them with a reference");
-  cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box)");
-  cmd->add_option("-o,--output", args->output, "Output folder (default: compare-<scene name>)");
-  cmd->add_option("--integrators", args->integrators, "Comma-separated variants to compare")->capture_default_str();
-  cmd->add_option("--reference", args->reference, "Reference image (EXR with R, G, B) instead of rendering one");
-  cmd->add_option("--reference-spp", args->reference_spp,
-                  "Samples per pixel of the rendered nee_mis reference (default: 16 x spp, at least 256)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--crop", args->crop, "x,y,w,h: add a row of zoomed crops of this region to montage.png");
-  cmd->add_flag("--convergence", args->convergence,
-                "Also render each variant at 1, 2, 4, ... spp and plot error against time (convergence.png)");
-  cmd->add_flag("-q,--quiet", args->quiet, "No progress on stderr and no table on stdout");
-  add_render_overrides(*cmd, args->overrides);
-  add_camera_option(*cmd, args->overrides);
-  // The shared render options, worded for compare. --integrator stays registered only to refuse it helpfully.
-  cmd->get_option("--integrator")->group("");
-  cmd->get_option("--spp")->description("Equal samples: samples per pixel of every variant (default: the scene's)");
-  cmd->get_option("--time")->description(
-      "Equal time: every variant renders for this many seconds, in whole passes (instead of --spp; 0 = none)");
-  cmd->get_option("--mis-light-probability")
-      ->description("For the mis variant: probability c_l of the light strategy, in [0, 1) (default 0.5)");
-  cmd->get_option("--uniform-measure")->description("theta-phi | solid-angle (for the uniform variant)");
-  cmd->callback([args, &exit_code] { exit_code = run_compare(*args); });
 }
 
 }  // namespace lumis

@@ -8,7 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "app/cli.h"
+#include "app/commands.h"
 #include "app/diff.h"
 #include "core/file_ext.h"
 #include "core/image_io.h"
@@ -16,18 +16,6 @@
 namespace lumis {
 
 namespace {
-
-struct DiffArgs {
-  std::string a, b;
-  std::string metric = "mse";
-  std::optional<double> threshold;
-  double tolerance = 0.01;
-  std::string psnr_peak = "1";
-  std::string heatmap;
-  bool json = false;
-  bool z_test = false;
-  double alpha = 0.01;
-};
 
 nlohmann::json metrics_json(const DiffMetrics& m) {
   return {{"width", m.width},       {"height", m.height},   {"mse", m.mse},
@@ -49,6 +37,8 @@ nlohmann::json z_json(const ZTestResult& z, double alpha) {
           {"used_test_variance", z.used_a_variance},
           {"passed", z.passed}};
 }
+
+}  // namespace
 
 int run_diff(const DiffArgs& args) {
   DiffOptions opt;
@@ -136,38 +126,6 @@ int run_diff(const DiffArgs& args) {
                   *args.threshold, threshold_ok ? "pass" : "FAIL");
   }
   return passed ? 0 : 1;
-}
-
-}  // namespace
-
-void register_diff_command(CLI::App& app, int& exit_code) {
-  auto args = std::make_shared<DiffArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "diff", "Compare image A with reference B: error metrics, threshold check, z-test, heatmap (exit 0 pass, "
-              "1 fail, 2 error)");
-  cmd->add_option("A", args->a, "Test image")->required();
-  cmd->add_option("B", args->b, "Reference image")->required();
-  cmd->add_option("--metric", args->metric, "Metric that --threshold applies to")
-      ->check(CLI::IsMember(metric_names()))
-      ->capture_default_str();
-  cmd->add_option("--threshold", args->threshold,
-                  "Fail (exit 1) when the metric exceeds this value (psnr: when it is below)")
-      ->check(kFiniteNumber);
-  cmd->add_option("--tolerance", args->tolerance, "Absolute error per channel for the 'over' metric")
-      ->check(kFiniteNumber)
-      ->check(number_in(0, std::numeric_limits<double>::max(), "a number >= 0"))
-      ->capture_default_str();
-  cmd->add_option("--psnr-peak", args->psnr_peak, "PSNR peak: a number, or 'max' for the reference's largest value")
-      ->capture_default_str();
-  cmd->add_option("--heatmap", args->heatmap, "Write a false-colour picture of the per-pixel error (PNG/EXR)");
-  cmd->add_flag("--json", args->json, "Print the metrics as JSON on stdout");
-  cmd->add_flag("--z-test", args->z_test,
-                "Per-pixel z-test against B's variance channels (plus A's when present); fail on any rejection");
-  cmd->add_option("--alpha", args->alpha, "Family-wise significance level of the z-test")
-      ->check(kFiniteNumber)
-      ->check(number_in(1e-12, 0.5, "a significance level in [1e-12, 0.5]"))
-      ->capture_default_str();
-  cmd->callback([args, &exit_code] { exit_code = run_diff(*args); });
 }
 
 }  // namespace lumis

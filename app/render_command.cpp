@@ -11,7 +11,7 @@
 #include <iostream>
 #include <limits>
 
-#include "app/cli.h"
+#include "app/commands.h"
 #include "app/scene_error.h"
 #include "app/scene_loader.h"
 #include "core/file_ext.h"
@@ -88,13 +88,9 @@ std::string format_bytes(uint64_t b) {
   return buf;
 }
 
-struct RenderArgs {
-  std::string scene;
-  std::string output;
-  RenderOverrides overrides;
-  bool quiet = false;
-  bool aov_albedo = false, aov_normal = false, aov_depth = false;
-};
+bool stderr_is_tty() { return isatty(fileno(stderr)) != 0; }
+
+}  // namespace
 
 int run_render(const RenderArgs& args) {
   const std::string scene_path = args.scene.empty() ? default_scene_path() : args.scene;
@@ -211,10 +207,6 @@ int run_render(const RenderArgs& args) {
   return g_interrupted ? 128 + g_signal.load() : 0;
 }
 
-}  // namespace
-
-bool stderr_is_tty() { return isatty(fileno(stderr)) != 0; }
-
 std::string default_scene_path() {
   namespace fs = std::filesystem;
   const fs::path rel = fs::path("scenes") / "cornell-sphere.json";
@@ -225,22 +217,6 @@ std::string default_scene_path() {
       if (fs::exists(dir / rel)) return (dir / rel).string();
   }
   return (fs::path(LUMIS_SOURCE_DIR) / rel).string();
-}
-
-void register_render_command(CLI::App& app, int& exit_code) {
-  auto args = std::make_shared<RenderArgs>();
-  CLI::App* cmd = app.add_subcommand("render", "Render a scene (lumis JSON, .gltf or .glb) to an image");
-  cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box, scenes/cornell-sphere.json)");
-  cmd->add_option("-o,--output", args->output,
-                  "Output image: .exr (linear, with variance channels), .png/.jpg (sRGB), .hdr "
-                  "(default: <scene name>.png)");
-  add_render_overrides(*cmd, args->overrides);
-  add_camera_option(*cmd, args->overrides);
-  cmd->add_flag("-q,--quiet", args->quiet, "No progress or summary on stderr");
-  cmd->add_flag("--aov-albedo", args->aov_albedo, "Add albedo.R/G/B channels (EXR)");
-  cmd->add_flag("--aov-normal", args->aov_normal, "Add N.X/Y/Z shading-normal channels (EXR)");
-  cmd->add_flag("--aov-depth", args->aov_depth, "Add a Z channel with first-hit distance (EXR)");
-  cmd->callback([args, &exit_code] { exit_code = run_render(*args); });
 }
 
 }  // namespace lumis

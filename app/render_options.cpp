@@ -1,62 +1,14 @@
+// Render options that override the scene file (app/render_overrides.h): applying them to a scene's settings, and
+// naming those that none of the chosen integrators reads.
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
 #include <stdexcept>
 
-#include "app/cli.h"
+#include "app/render_overrides.h"
 #include "integrators/integrator.h"
 
 namespace lumis {
-
-namespace {
-constexpr long kMaxSide = 16384;  // pixels, either side of the image
-}  // namespace
-
-void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
-  cmd.add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1u, 1u << 30));
-  cmd.add_option("--integrator", o.integrator, "uniform | bsdf | light | mis | nee_mis");
-  cmd.add_option("--max-depth", o.max_depth, "Scattering vertices per path (1 = direct lighting only)")
-      ->check(CLI::Range(1, 1024));
-  cmd.add_option("--rr-depth", o.rr_depth, "Russian roulette from this depth on (0 = off)")->check(CLI::Range(0, 1024));
-  cmd.add_option("--seed", o.seed, "Random seed, in [0, 4294967295]")
-      ->check(number_in(0, 4294967295.0, "a whole number in [0, 4294967295]"));
-  cmd.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
-  cmd.add_option("--width", o.width, "Image width in pixels (alone: the height keeps the scene's aspect ratio)")
-      ->check(CLI::Range(1, int(kMaxSide)));
-  cmd.add_option("--height", o.height, "Image height in pixels (alone: the width keeps the scene's aspect ratio)")
-      ->check(CLI::Range(1, int(kMaxSide)));
-  cmd.add_option("--sampler", o.sampler, "independent | stratified | sobol");
-  cmd.add_option("--light-selection", o.light_selection, "uniform | power | importance");
-  cmd.add_option("--mis-heuristic", o.mis_heuristic, "balance | power");
-  cmd.add_option("--mis-light-probability", o.mis_light_probability,
-                 "For --integrator mis: probability c_l of the light strategy, in [0, 1) (default 0.5)")
-      ->check(kFiniteNumber)
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            // 1 is left out: with light sampling alone, directions no light covers (indirect light) are never
-            // drawn, and the estimate loses that light.
-            try {
-              const double v = std::stod(text);
-              if (!(v >= 0 && v < 1)) return "expected a probability in [0, 1), found " + text;
-            } catch (const std::exception&) {
-            }
-            return {};
-          },
-          "in [0, 1)"));
-  cmd.add_option("--uniform-measure", o.uniform_measure, "theta-phi | solid-angle (for --integrator uniform)");
-  cmd.add_option("--time", o.time, "Stop after this many seconds (writes what was rendered; 0 = no time budget)")
-      ->check(kFiniteNumber)
-      ->check(CLI::Range(0.0f, 1e7f));
-  cmd.add_option("--exposure", o.exposure, "Exposure in stops for PNG/JPG output")
-      ->check(kFiniteNumber)
-      ->check(CLI::Range(-64.0f, 64.0f));
-}
-
-void add_camera_option(CLI::App& cmd, RenderOverrides& o) {
-  cmd.add_option("--camera", o.camera,
-                 "For a glTF file: the camera to render through, by number (0 = the first, the default) or by name; "
-                 "an unknown one lists those the file has");
-}
 
 void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
   if (o.spp) s.spp = *o.spp;
@@ -65,7 +17,7 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
   if (o.rr_depth) s.rr_depth = *o.rr_depth;
   // One of the two alone keeps the scene's aspect ratio (a smaller or larger render of the same picture).
   const double aspect = double(s.width) / double(s.height);
-  const auto follow = [](double v) { return static_cast<int>(std::clamp(std::lround(v), 1L, kMaxSide)); };
+  const auto follow = [](double v) { return static_cast<int>(std::clamp(std::lround(v), 1L, long(kMaxImageSide))); };
   if (o.width) s.width = *o.width;
   if (o.height) s.height = *o.height;
   if (o.width && !o.height) s.height = follow(*o.width / aspect);

@@ -1,6 +1,6 @@
 // Render options that override the scene file (shared by render, compare and bench), and the default scene.
-// Kept apart from app/cli.h so that code which only carries the options (the benchmark) does not include CLI11,
-// whose header costs every file that includes it about 11 s of compile time at -O3.
+// Kept apart from app/cli.cpp, the one file that includes CLI11 (about 11 s of compile time at -O3 in every file
+// that includes it).
 #pragma once
 
 #include <cstdint>
@@ -12,13 +12,16 @@
 
 namespace lumis {
 
+/// Largest image width or height, in pixels (--width, --height, and a side that follows the aspect ratio).
+inline constexpr int kMaxImageSide = 16384;
+
 /// Render options that override the scene file (shared by render, compare and bench).
 struct RenderOverrides {
   std::optional<uint32_t> spp, seed;
   std::optional<int> max_depth, rr_depth, width, height, threads;
   std::optional<std::string> integrator, sampler, light_selection, mis_heuristic, uniform_measure;
   std::optional<float> time, exposure, mis_light_probability;
-  std::string camera;  ///< a glTF file's camera (SceneLoadOptions::camera), from add_camera_option; empty: default
+  std::string camera;  ///< a glTF file's camera (SceneLoadOptions::camera), from --camera; empty: default
 };
 
 /// Apply overrides to settings; throws std::invalid_argument for bad names (listing valid ones).

@@ -1,0 +1,285 @@
+// lumis's command line: the one file that includes CLI11 (Debian's 2.1.2 is header-only and costs about 11 s of
+// compile time in every file that includes it). It turns argv into the commands' argument structs (app/commands.h),
+// runs the chosen command and returns its exit code.
+#include "app/cli.h"
+
+#include <cerrno>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <string>
+#include <system_error>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "app/diff.h"
+#include "app/warptest.h"
+#include "core/file_ext.h"
+
+namespace lumis {
+
+namespace {
+
+/// CLI11 check that a number option is finite: CLI::Range lets NaN through (every comparison with it is false).
+const CLI::Validator kFiniteNumber(
+    [](std::string& text) -> std::string {
+      // CLI11 runs checks before conversion: parse as the option will (a whole string that is a number).
+      try {
+        size_t used = 0;
+        const double v = std::stod(text, &used);
+        if (used == text.size() && !std::isfinite(v)) return "expected a finite number, found " + text;
+      } catch (const std::exception&) {  // not a number: the option's own conversion reports it
+      }
+      return {};
+    },
+    "FINITE");
+
+/// CLI11 check that a number lies in [lo, hi], with a message that says so in the option's own terms (CLI::Range
+/// prints its bounds with six decimals, or as the largest double when there is no upper bound).
+CLI::Validator number_in(double lo, double hi, const std::string& expected) {
+  return CLI::Validator(
+      [lo, hi, expected](std::string& text) -> std::string {
+        try {
+          size_t used = 0;
+          const double v = std::stod(text, &used);
+          if (used == text.size() && !(v >= lo && v <= hi)) return "expected " + expected + ", found " + text;
+        } catch (const std::exception&) {  // not a number: the option's own conversion reports it
+        }
+        return {};
+      },
+      expected);
+}
+
+/// The render options that override the scene file (render, compare and bench).
+void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
+  cmd.add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1u, 1u << 30));
+  cmd.add_option("--integrator", o.integrator, "uniform | bsdf | light | mis | nee_mis");
+  cmd.add_option("--max-depth", o.max_depth, "Scattering vertices per path (1 = direct lighting only)")
+      ->check(CLI::Range(1, 1024));
+  cmd.add_option("--rr-depth", o.rr_depth, "Russian roulette from this depth on (0 = off)")->check(CLI::Range(0, 1024));
+  cmd.add_option("--seed", o.seed, "Random seed, in [0, 4294967295]")
+      ->check(number_in(0, 4294967295.0, "a whole number in [0, 4294967295]"));
+  cmd.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  cmd.add_option("--width", o.width, "Image width in pixels (alone: the height keeps the scene's aspect ratio)")
+      ->check(CLI::Range(1, kMaxImageSide));
+  cmd.add_option("--height", o.height, "Image height in pixels (alone: the width keeps the scene's aspect ratio)")
+      ->check(CLI::Range(1, kMaxImageSide));
+  cmd.add_option("--sampler", o.sampler, "independent | stratified | sobol");
+  cmd.add_option("--light-selection", o.light_selection, "uniform | power | importance");
+  cmd.add_option("--mis-heuristic", o.mis_heuristic, "balance | power");
+  cmd.add_option("--mis-light-probability", o.mis_light_probability,
+                 "For --integrator mis: probability c_l of the light strategy, in [0, 1) (default 0.5)")
+      ->check(kFiniteNumber)
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            // 1 is left out: with light sampling alone, directions no light covers (indirect light) are never
+            // drawn, and the estimate loses that light.
+            try {
+              const double v = std::stod(text);
+              if (!(v >= 0 && v < 1)) return "expected a probability in [0, 1), found " + text;
+            } catch (const std::exception&) {
+            }
+            return {};
+          },
+          "in [0, 1)"));
+  cmd.add_option("--uniform-measure", o.uniform_measure, "theta-phi | solid-angle (for --integrator uniform)");
+  cmd.add_option("--time", o.time, "Stop after this many seconds (writes what was rendered; 0 = no time budget)")
+      ->check(kFiniteNumber)
+      ->check(CLI::Range(0.0f, 1e7f));
+  cmd.add_option("--exposure", o.exposure, "Exposure in stops for PNG/JPG output")
+      ->check(kFiniteNumber)
+      ->check(CLI::Range(-64.0f, 64.0f));
+}
+
+/// --camera (render and compare: the commands that load one scene).
+void add_camera_option(CLI::App& cmd, RenderOverrides& o) {
+  cmd.add_option("--camera", o.camera,
+                 "For a glTF file: the camera to render through, by number (0 = the first, the default) or by name; "
+                 "an unknown one lists those the file has");
+}
+
+void register_render_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene (lumis JSON, .gltf or .glb) to an image");
+  cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box, scenes/cornell-sphere.json)");
+  cmd->add_option("-o,--output", args->output,
+                  "Output image: .exr (linear, with variance channels), .png/.jpg (sRGB), .hdr "
+                  "(default: <scene name>.png)");
+  add_render_overrides(*cmd, args->overrides);
+  add_camera_option(*cmd, args->overrides);
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress or summary on stderr");
+  cmd->add_flag("--aov-albedo", args->aov_albedo, "Add albedo.R/G/B channels (EXR)");
+  cmd->add_flag("--aov-normal", args->aov_normal, "Add N.X/Y/Z shading-normal channels (EXR)");
+  cmd->add_flag("--aov-depth", args->aov_depth, "Add a Z channel with first-hit distance (EXR)");
+  cmd->callback([args, &exit_code] { exit_code = run_render(*args); });
+}
+
+void register_warptest_command(CLI::App& app, int& exit_code) {
+  struct Args {
+    std::string name, out = "warptest.png";
+    float param = NAN;
+    uint64_t samples = 1'000'000;
+  };
+  auto args = std::make_shared<Args>();
+  std::string names;
+  for (const auto& n : warptest_names()) names += (names.empty() ? "" : ", ") + n;
+  CLI::App* cmd = app.add_subcommand(
+      "warptest", "Chi-square test of a sampling routine against its pdf, with a picture of both histograms");
+  cmd->add_option("name", args->name, "Warp to test: " + names)->required();
+  cmd->add_option("--param", args->param,
+                  "cos_max in (-1, 1) for spherical_cap, alpha in (0, 1] for ggx_* (default: 0.9, 0.3; the test "
+                  "decides for cos_max up to 0.9999 and alpha from 1e-19)")
+      ->check(kFiniteNumber);
+  // The chi-square test needs cells that expect 5 samples or more: uniform_sphere's 3200 equal cells need 16,000
+  // samples; from 100,000 on, every warp at its default parameter has hundreds of such cells.
+  cmd->add_option("--samples", args->samples, "Number of samples")
+      ->check(CLI::Range(100'000ull, 1'000'000'000ull))
+      ->capture_default_str();
+  cmd->add_option("-o,--output", args->out, "Histogram picture (PNG; .exr, .jpg and .hdr also work), '' for none")
+      ->capture_default_str();
+  cmd->callback([args, &exit_code] {
+    const int rc = run_warptest(args->name, args->param, args->samples, args->out, std::cout, std::cerr);
+    exit_code = rc == 2 ? 2 : (rc == 0 ? 0 : 1);
+  });
+}
+
+void register_diff_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<DiffArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "diff", "Compare image A with reference B: error metrics, threshold check, z-test, heatmap (exit 0 pass, "
+              "1 fail, 2 error)");
+  cmd->add_option("A", args->a, "Test image")->required();
+  cmd->add_option("B", args->b, "Reference image")->required();
+  cmd->add_option("--metric", args->metric, "Metric that --threshold applies to")
+      ->check(CLI::IsMember(metric_names()))
+      ->capture_default_str();
+  cmd->add_option("--threshold", args->threshold,
+                  "Fail (exit 1) when the metric exceeds this value (psnr: when it is below)")
+      ->check(kFiniteNumber);
+  cmd->add_option("--tolerance", args->tolerance, "Absolute error per channel for the 'over' metric")
+      ->check(kFiniteNumber)
+      ->check(number_in(0, std::numeric_limits<double>::max(), "a number >= 0"))
+      ->capture_default_str();
+  cmd->add_option("--psnr-peak", args->psnr_peak, "PSNR peak: a number, or 'max' for the reference's largest value")
+      ->capture_default_str();
+  cmd->add_option("--heatmap", args->heatmap, "Write a false-colour picture of the per-pixel error (PNG/EXR)");
+  cmd->add_flag("--json", args->json, "Print the metrics as JSON on stdout");
+  cmd->add_flag("--z-test", args->z_test,
+                "Per-pixel z-test against B's variance channels (plus A's when present); fail on any rejection");
+  cmd->add_option("--alpha", args->alpha, "Family-wise significance level of the z-test")
+      ->check(kFiniteNumber)
+      ->check(number_in(1e-12, 0.5, "a significance level in [1e-12, 0.5]"))
+      ->capture_default_str();
+  cmd->callback([args, &exit_code] { exit_code = run_diff(*args); });
+}
+
+void register_compare_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Render a scene with several integrators at equal spp (--spp) or equal time (--time) and compare "
+                 "them with a reference");
+  cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box)");
+  cmd->add_option("-o,--output", args->output, "Output folder (default: compare-<scene name>)");
+  cmd->add_option("--integrators", args->integrators, "Comma-separated variants to compare")->capture_default_str();
+  cmd->add_option("--reference", args->reference, "Reference image (EXR with R, G, B) instead of rendering one");
+  cmd->add_option("--reference-spp", args->reference_spp,
+                  "Samples per pixel of the rendered nee_mis reference (default: 16 x spp, at least 256)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--crop", args->crop, "x,y,w,h: add a row of zoomed crops of this region to montage.png");
+  cmd->add_flag("--convergence", args->convergence,
+                "Also render each variant at 1, 2, 4, ... spp and plot error against time (convergence.png)");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress on stderr and no table on stdout");
+  add_render_overrides(*cmd, args->overrides);
+  add_camera_option(*cmd, args->overrides);
+  // The shared render options, worded for compare. --integrator stays registered only to refuse it helpfully.
+  cmd->get_option("--integrator")->group("");
+  cmd->get_option("--spp")->description("Equal samples: samples per pixel of every variant (default: the scene's)");
+  cmd->get_option("--time")->description(
+      "Equal time: every variant renders for this many seconds, in whole passes (instead of --spp; 0 = none)");
+  cmd->get_option("--mis-light-probability")
+      ->description("For the mis variant: probability c_l of the light strategy, in [0, 1) (default 0.5)");
+  cmd->get_option("--uniform-measure")->description("theta-phi | solid-angle (for the uniform variant)");
+  cmd->callback([args, &exit_code] { exit_code = run_compare(*args); });
+}
+
+void register_bench_command(CLI::App& app, int& exit_code) {
+  auto a = std::make_shared<BenchArgs>();
+  BenchOptions& o = a->options;
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "Measure samples/s and rays/s of every integrator against Embree's raw ray throughput");
+  cmd->add_option("scenes", o.scenes,
+                  "Scene files, or @large for the generated 1M-triangle room (default: @large, the shipped scenes "
+                  "and the largest shared glTF models)");
+  cmd->add_option("--json", o.json_out, "Write the results as JSON to this file");
+  CLI::Option* repeat = cmd->add_option("--repeat", o.repeat, "Repetitions; every figure is their median (default 3; 1 with --quick)")->check(CLI::Range(1, 100));
+  cmd->add_flag("--quick", o.quick,
+                "Tiny settings (32x32, 1 spp, 1 repetition, small raw-ray batches, a 20k-triangle @large; of the "
+                "default scenes only @large and cornell-sphere): a smoke test, not a measurement");
+  cmd->add_option("--assets", o.assets_dir, "Shared assets folder with gltf/ (default: <source>/../shared/assets)")
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--large-triangles", o.large_triangles, "Triangles in the generated scene (at least)")
+      ->check(CLI::Range(size_t(100), size_t(100'000'000)));
+  cmd->add_option("--raw-rays", o.raw_rays, "Rays per kind for the raw Embree measurement (default 524288)")
+      ->check(CLI::Range(size_t(16), size_t(1) << 26));
+  cmd->add_option("--write-large-scene", a->write_large,
+                  "Only write the generated large scene to this .glb (with --large-triangles) and exit")
+      ->check(CLI::Validator(
+          [](std::string& path) -> std::string {
+            return lower_extension(path) == ".glb" ? "" : "expected a .glb file name, found " + path;  // .GLB too
+          },
+          "FILE.glb"));
+  add_render_overrides(*cmd, o.overrides);
+  cmd->callback([a, repeat, &exit_code] {
+    if (a->options.quick && repeat->count() == 0) a->options.repeat = 1;
+    exit_code = run_bench_command(*a);
+  });
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"lumis: an offline path tracer built on the importance-sampling lecture's estimators"};
+  app.set_version_flag("--version", std::string("lumis ") + LUMIS_VERSION);
+  app.require_subcommand(1);
+  // Usage errors start with "lumis: ", as every other message does.
+  app.failure_message(
+      [](const CLI::App* a, const CLI::Error& e) { return "lumis: " + CLI::FailureMessage::simple(a, e); });
+  // Past a file-size limit (ulimit -f), a write fails with EFBIG and lumis names the file; the default action of
+  // SIGXFSZ would instead kill it with a core dump and leave its temporary file behind.
+  std::signal(SIGXFSZ, SIG_IGN);
+  int exit_code = 0;
+  register_render_command(app, exit_code);
+  register_warptest_command(app, exit_code);
+  register_diff_command(app, exit_code);
+  register_compare_command(app, exit_code);
+  register_bench_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+  // Output lost to a full disk (`lumis diff --json > metrics.json`) must not pass for success, as in coreutils.
+  // diff's errors exit 2, since its 1 means "the images differ"; every other command's I/O errors exit 1.
+  errno = 0;
+  std::cout.flush();
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+    const std::string why = errno ? ": " + std::generic_category().message(errno) : "";
+    std::cerr << "lumis: cannot write the standard output" << why << "\n";
+    return app.got_subcommand("diff") ? 2 : 1;
+  }
+  return exit_code;
+}
+
+}  // namespace lumis
