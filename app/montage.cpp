@@ -110,9 +110,10 @@ Image make_montage(const std::vector<MontageTile>& tiles, const MontageOptions& 
   int label_w = 0;
   for (const MontageTile& t : tiles)
     for (const std::string& s : t.label) label_w = std::max(label_w, text_width(s, text_scale));
-  const int col_w = std::max(w * zoom, label_w);
-  const int label_h = static_cast<int>(lines) * kLineHeight * text_scale;
   const bool crop = options.crop_w > 0 && options.crop_h > 0;
+  // A crop wider than half the image widens the columns, so that at 2x it still fits in its own.
+  const int col_w = std::max({w * zoom, label_w, crop ? 2 * options.crop_w : 0});
+  const int label_h = static_cast<int>(lines) * kLineHeight * text_scale;
   // Crops are enlarged so that their longer side fills the column (at least 2x), nearest neighbour.
   const int crop_zoom = crop ? std::max(2, col_w / std::max(options.crop_w, options.crop_h)) : 0;
   const int crop_h = crop ? options.crop_h * crop_zoom : 0;

@@ -227,6 +227,23 @@ TEST(ComparePictures, MontageAndLogLogPlot) {
     EXPECT_EQ(crop_x0, 6 + 2 * 48);
     EXPECT_EQ(crop_y0, m.height - 6 - 192 + 2 * 48);
   }
+  {  // AWideCropWidensTheColumns: at 2x a 150-pixel crop of a 200-pixel image needs 300; each stays in its column
+    const Image a = make_canvas(200, 100, Color(0, 1, 0)), b = make_canvas(200, 100, Color(0, 0, 1));
+    MontageOptions o;
+    o.crop_x = 0, o.crop_y = 0, o.crop_w = 150, o.crop_h = 50;
+    const Image m = make_montage({{&a, {}}, {&b, {}}}, o);
+    EXPECT_EQ(m.width, 6 + 2 * (300 + 6));
+    int n[2] = {0, 0}, lo[2] = {m.width, m.width}, hi[2] = {-1, -1};
+    for (int y = 6 + 100; y < m.height; ++y)  // the crop row, below the tiles (no labels)
+      for (int x = 0; x < m.width; ++x)
+        for (int t = 0; t < 2; ++t)
+          if (m.at(x, y, 1 + t) == 1.0f) ++n[t], lo[t] = std::min(lo[t], x), hi[t] = std::max(hi[t], x);
+    for (int t = 0; t < 2; ++t) {
+      EXPECT_EQ(n[t], 300 * 100) << "tile " << t;
+      EXPECT_EQ(lo[t], 6 + t * 306) << "tile " << t;
+      EXPECT_EQ(hi[t], 6 + t * 306 + 299) << "tile " << t;
+    }
+  }
   {  // LogLogCurvesInTheirColours
     const Color c0 = series_colour(0), c1 = series_colour(1);
     ASSERT_NE(c0, c1);
