@@ -101,7 +101,7 @@ CropRect parse_crop(const std::string& text, int width, int height) {
       throw std::invalid_argument("--crop: '" + parts[i] + "' is not an integer (expected x,y,w,h)");
   }
   const CropRect c{v[0], v[1], v[2], v[3]};
-  if (c.x < 0 || c.y < 0 || c.w <= 0 || c.h <= 0 || c.x + c.w > width || c.y + c.h > height)
+  if (c.x < 0 || c.y < 0 || c.w <= 0 || c.h <= 0 || c.w > width - c.x || c.h > height - c.y)
     throw std::invalid_argument("--crop: " + text + " is not inside the " + std::to_string(width) + "x" +
                                 std::to_string(height) + " image");
   return c;

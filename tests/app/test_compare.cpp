@@ -53,6 +53,10 @@ TEST(CompareOptions, CropAndIntegratorList) {
     EXPECT_THROW(parse_crop("1,2,3,4.5", 32, 32), std::invalid_argument);
     EXPECT_THROW(parse_crop("20,0,16,16", 32, 32), std::invalid_argument);  // runs off the right edge
     EXPECT_THROW(parse_crop("0,0,0,4", 32, 32), std::invalid_argument);
+    // Sums past INT_MAX must not wrap around into the image.
+    EXPECT_THROW(parse_crop("2147483647,0,1,1", 32, 32), std::invalid_argument);
+    EXPECT_THROW(parse_crop("1,1,2147483647,4", 32, 32), std::invalid_argument);
+    EXPECT_THROW(parse_crop("0,4,4,2147483647", 32, 32), std::invalid_argument);
   }
   {  // IntegratorList
     EXPECT_EQ(parse_integrator_list("mis,bsdf"), (std::vector<std::string>{"mis", "bsdf"}));
