@@ -99,7 +99,8 @@ DiffMetrics compute_metrics(const Image& a, const Image& b, const DiffOptions& o
            : m.mse == 0       ? std::numeric_limits<double>::infinity()
            : m.psnr_peak <= 0 ? -std::numeric_limits<double>::infinity()
                               : 10.0 * std::log10(m.psnr_peak * m.psnr_peak / m.mse);
-  m.over_tolerance_percent = 100.0 * static_cast<double>(over) / (static_cast<double>(a.width) * a.height);
+  // NaN too when a value is not finite, so that no threshold on it passes such an image.
+  m.over_tolerance_percent = ok ? 100.0 * static_cast<double>(over) / (static_cast<double>(a.width) * a.height) : nan;
   return m;
 }
 
@@ -143,9 +144,10 @@ ZTestResult z_test(const Image& a, const Image& b, const ZTestOptions& options, 
     for (int x = 0; x < a.width; ++x)
       for (int k = 0; k < 3; ++k) {
         const double xa = a.at(x, y, ca[k]), xb = b.at(x, y, cb[k]);
-        double var = b.at(x, y, vb[k]);
-        if (r.used_a_variance) var += a.at(x, y, va[k]);
-        if (!std::isfinite(xa) || !std::isfinite(xb) || !std::isfinite(var) || var < 0) {
+        // Each variance checked on its own: a negative one is corrupt data even where the other's would hide it.
+        const double var_b = b.at(x, y, vb[k]), var_a = r.used_a_variance ? a.at(x, y, va[k]) : 0.0;
+        const double var = var_a + var_b;
+        if (!std::isfinite(xa) || !std::isfinite(xb) || !std::isfinite(var) || var_a < 0 || var_b < 0) {
           ++r.nonfinite;
           ++r.rejected;
           continue;

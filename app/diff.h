@@ -34,7 +34,7 @@ struct DiffMetrics {
   double max_abs = 0;    ///< largest |a - b| over pixels and channels
   double tolerance = 0;
   double over_tolerance_percent = 0;  ///< pixels with |a - b| > tolerance in any channel, in percent
-  uint64_t nonfinite = 0;  ///< pixel-channels where a or b is NaN or infinite (metrics then become NaN)
+  uint64_t nonfinite = 0;  ///< pixel-channels where a or b is NaN or infinite (every metric then is NaN)
 };
 
 /// Indices of the R, G and B channels (a grey image's Y channel three times); throws DiffError naming `name` when

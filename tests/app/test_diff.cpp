@@ -92,6 +92,9 @@ TEST(DiffMetrics, ThresholdsNonFiniteAndChannelOrder) {
     EXPECT_EQ(m.nonfinite, 1u);
     EXPECT_TRUE(std::isnan(m.mse));
     EXPECT_FALSE(metric_passes("mse", m.mse, 1e9));
+    // Every metric, `over` included: one NaN pixel among many must not pass a threshold on the share of pixels.
+    for (const std::string& name : metric_names())
+      EXPECT_FALSE(metric_passes(name, metric_value(m, name), name == "psnr" ? -1e9 : 1e9)) << name;
   }
   {  // ChannelsFoundByNameNotPosition
     Image b(2, 1, {"B", "G", "R", "A"});
@@ -191,6 +194,21 @@ TEST(DiffZTest, ReferenceVarianceAloneAndZeroVariance) {
   a.at(0, 0, 0) = 0.25f;
   b.at(1, 1, 4) = -1.0f;  // a negative variance is corrupt data, never a pass
   EXPECT_FALSE(z_test(a, b).passed);
+  // Also when the tested image's own variance would make the sum positive (or zero), in either image.
+  Image av(4, 4, {"R", "G", "B", "variance.R", "variance.G", "variance.B"});
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x)
+      for (int k = 0; k < 6; ++k) av.at(x, y, k) = b.at(x, y, k);
+  b.at(1, 1, 4) = b.at(2, 2, 4);
+  av.at(1, 1, 4) = b.at(1, 1, 4);
+  ASSERT_TRUE(z_test(av, b).passed);
+  for (const float neg_b : {-5e-4f, -1e-4f}) {
+    Image bb = b, aa = av;
+    bb.at(1, 1, 4) = neg_b;
+    aa.at(1, 1, 4) = 5e-4f;
+    EXPECT_FALSE(z_test(aa, bb).passed) << neg_b;
+    EXPECT_FALSE(z_test(bb, aa).passed) << neg_b;  // the negative one in the tested image
+  }
 }
 
 // The variance of a difference is the sum of both images' variances: a 1x1 image 0.04 above the reference, whose
