@@ -90,7 +90,9 @@ std::vector<unsigned char> encode(const std::string& final_path, const Image& im
     std::vector<float> rgb(n * 3);
     for (size_t i = 0; i < n; ++i) {
       const Color c = pixel_rgb(image, i);
-      for (int k = 0; k < 3; ++k) rgb[i * 3 + k] = std::max(c[k], 0.0f);  // RGBE cannot hold negatives
+      // RGBE holds neither negatives, NaN nor infinity, and its exponent byte wraps above 2^127: NaN is written
+      // as 0 (as in PNG), +Inf and anything above 1e38 as 1e38.
+      for (int k = 0; k < 3; ++k) rgb[i * 3 + k] = std::isnan(c[k]) ? 0.0f : std::clamp(c[k], 0.0f, 1e38f);
     }
     OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT);
     add_metadata(spec);

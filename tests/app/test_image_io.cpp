@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "core/image_io.h"
 #include "tests/app/png_test_util.h"
@@ -159,6 +160,22 @@ TEST_F(ImageIoTest, RoundTrips) {
     ASSERT_EQ(back.channels, 3);
     EXPECT_NEAR(back.at(2, 1, 0), 12.5f, 12.5f / 128);  // RGBE: 8-bit mantissa shared by the pixel
     EXPECT_NEAR(back.at(2, 1, 1), 0.25f, 12.5f / 128);
+  }
+  {  // HdrWritesNonFiniteAndHugeValuesAsFiniteOnes: NaN as 0, +Inf and 3e38 as 1e38 (the largest RGBE holds)
+    reset();
+    Image img(2, 1, {"R", "G", "B"});
+    const float inf = std::numeric_limits<float>::infinity();
+    img.at(0, 0, 0) = std::numeric_limits<float>::quiet_NaN(), img.at(0, 0, 1) = inf, img.at(0, 0, 2) = 1.0f;
+    img.at(1, 0, 0) = 3e38f, img.at(1, 0, 1) = 0.5f, img.at(1, 0, 2) = -inf;
+    const std::string path = file("extreme.hdr");
+    write_image(path, img);
+    const Image back = read_image(path);
+    ASSERT_EQ(back.channels, 3);
+    for (float v : back.data) EXPECT_TRUE(std::isfinite(v) && v >= 0) << v;
+    EXPECT_EQ(back.at(0, 0, 0), 0.0f);
+    EXPECT_NEAR(back.at(0, 0, 1), 1e38f, 1e38f / 128);
+    EXPECT_NEAR(back.at(1, 0, 0), 1e38f, 1e38f / 128);
+    EXPECT_EQ(back.at(1, 0, 2), 0.0f);
   }
   {  // JpgWrites
     reset();
