@@ -20,6 +20,8 @@ struct AlphaData {
   const TriangleMesh* mesh;
 };
 
+}  // namespace
+
 float alpha_at(const TriangleMesh& m, unsigned prim, float u, float v) {
   const AlphaMask& a = *m.alpha;
   float alpha = a.factor;
@@ -34,6 +36,8 @@ float alpha_at(const TriangleMesh& m, unsigned prim, float u, float v) {
   }
   return alpha;
 }
+
+namespace {
 
 void alpha_filter(const RTCFilterFunctionNArguments* args) {
   const auto* mesh = static_cast<const TriangleMesh*>(args->geometryUserPtr);

@@ -83,6 +83,10 @@ struct TriangleMesh {
   size_t triangle_count() const { return indices.size() / 3; }
 };
 
+/// Alpha of mesh m (which has m.alpha) on triangle prim at barycentrics (u, v) = weights of its vertices 1 and 2:
+/// factor x vertex alpha x texture alpha; a point is cut out when this is below m.alpha->cutoff.
+float alpha_at(const TriangleMesh& m, unsigned prim, float u, float v);
+
 struct Sphere {
   Vec3 center;
   float radius = 1;

@@ -104,7 +104,8 @@ std::unique_ptr<Light> make_sphere_light(Vec3 center, float radius, Color radian
 std::unique_ptr<Light> make_quad_light(Vec3 origin, Vec3 edge_u, Vec3 edge_v, Color radiance,
                                        QuadSampling method = QuadSampling::SphericalRectangle);
 /// Emissive triangle mesh (world space; emits on the front face, both faces when two_sided). Radiance =
-/// factor x texture (when given, looked up with the mesh's uv set). Triangles chosen by emitted power.
+/// factor x texture (when given, looked up with the mesh's uv set); a cut-out (mesh.alpha) emits nothing, and
+/// samples landing in it are empty. Triangles chosen by emitted power.
 std::unique_ptr<Light> make_mesh_light(const TriangleMesh& mesh, Color factor, std::optional<Texture> texture,
                                        bool two_sided, TriangleSampling method = TriangleSampling::SphericalTriangle);
 /// Constant-radiance environment.

@@ -1,8 +1,10 @@
 // Emissive triangle mesh (world space). A triangle is chosen with probability proportional to an estimate of its
 // emitted power, then a direction toward it by solid angle (Arvo's spherical triangle) or by area, converted to
 // solid angle. The estimate only has to be positive wherever emission can be non-zero: the pdf uses the very same
-// probabilities, so any such choice is unbiased.
+// probabilities, so any such choice is unbiased. A cut-out (alphaMode MASK) emits nothing: rays pass through it, so
+// a sample that lands in it is empty (its density still counts it, as a black texel's does).
 #include <cmath>
+#include <memory>
 
 #include "core/distribution.h"
 #include "core/simd.h"
@@ -20,6 +22,11 @@ class MeshLight final : public Light {
       : positions_(mesh.positions), indices_(mesh.indices), factor_(factor), texture_(std::move(texture)),
         two_sided_(two_sided), method_(method) {
     if (texture_) uvs_ = texture_->tex_coord == 1 ? mesh.uv1 : mesh.uv0;
+    if (mesh.alpha) {  // what alpha_at() reads: indices, vertex colours, uv sets and the mask
+      mask_ = std::make_unique<TriangleMesh>();
+      mask_->indices = mesh.indices, mask_->colors = mesh.colors, mask_->uv0 = mesh.uv0, mask_->uv1 = mesh.uv1;
+      mask_->alpha = mesh.alpha;
+    }
     const size_t n = indices_.size() / 3;
     normals_.resize(n);
     area_.resize(n);
@@ -164,7 +171,7 @@ class MeshLight final : public Light {
       if (!(dist > 0)) return std::nullopt;
       p_light = ctx.p + wi * dist;
       pdf = ss->pdf;
-      if (texture_) bary = barycentrics(t, p_light);  // only a texture's lookup needs them
+      if (texture_ || mask_) bary = barycentrics(t, p_light);  // only a texture's or a mask's lookup needs them
     } else {
       const Vec2 b01 = sample_uniform_triangle(ch.v);
       bary = {b01.x, b01.y, 1 - b01.x - b01.y};
@@ -178,6 +185,8 @@ class MeshLight final : public Light {
       if (!(cos_l > 0)) return std::nullopt;
       pdf = dist2 / (cos_l * area_[t]);
     }
+    if (mask_ && alpha_at(*mask_, static_cast<unsigned>(t), bary.y, bary.z) < mask_->alpha->cutoff)
+      return std::nullopt;
     pdf *= triangles_.pmf(t);
     return std::make_optional<LightSample>(radiance_at(t, bary), wi, dist, pdf, p_light, n);
   }
@@ -210,6 +219,7 @@ class MeshLight final : public Light {
   std::vector<float> area_;
   Color factor_;
   std::optional<Texture> texture_;
+  std::unique_ptr<TriangleMesh> mask_;  // the cut-out, when the mesh has one
   bool two_sided_;
   TriangleSampling method_;
   Distribution1D triangles_;

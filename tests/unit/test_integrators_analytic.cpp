@@ -4,9 +4,11 @@
 //    every variant against the `bsdf` variant's image;
 //  - closed sphere of albedo 0.5 emitting 0.5 inside: radiance 1 everywhere (pbrt-v4's analytic test);
 //  - sphere light (radius r, radiance L, height h) over a diffuse plane (albedo rho), direct lighting only: the
-//    point straight below has radiance rho L (r/h)^2.
+//    point straight below has radiance rho L (r/h)^2;
+//  - a large emitting square (radiance L) over a diffuse plane, half of it cut out (alphaMode MASK) along a diagonal
+//    through the zenith, direct lighting only: by symmetry half of pi L reaches the point below, radiance rho L / 2.
 // Each check is a z-test of a region mean against the exact value, using the film's own variance estimate.
-// Level: alpha = 0.01 for the whole file, Sidak-split over all 88 z-tests (29 regions x 3 channels, and the
+// Level: alpha = 0.01 for the whole file, Sidak-split over all 106 z-tests (35 regions x 3 channels, and the
 // silhouette's coverage), so the file fails by chance with probability below 1% for a correct renderer at any
 // seed; seeds are fixed, so a pass is reproducible. Bias of the truncated series (max depth) is below 1e-6 and
 // included in the expectation.
@@ -31,7 +33,7 @@ Camera make_camera(Vec3 from, Vec3 to, float fov) {
   c.fov_y_degrees = fov;
   return c;
 }
-constexpr int kRegionTests = 88;  // 29 regions x 3 channels + 1 (Bonferroni-safe under dependence)
+constexpr int kRegionTests = 106;  // 35 regions x 3 channels + 1 (Bonferroni-safe under dependence)
 
 struct Case {
   std::string integrator;
@@ -235,6 +237,42 @@ TEST(IntegratorAnalytic, SphereLightOverPlane) {
     const Film film = render_scene(scene, c, spp);
     expect_region(test::region_mean(film, [](int, int) { return true; }), expected,
                   c.label() + " plane below light");
+  }
+}
+
+// --- Half-cut-out square light over a plane, direct lighting -----------------------------------------------------
+
+// A cut-out emits nothing: rays pass through it, and light samples that land there must be empty. The square
+// (half-side 500 at height 1, facing down) is split along the diagonal x = z, whose plane holds the normal at the
+// origin, so each half sends exactly half of the square's irradiance there; the square's own is pi L (1 - 2e-6).
+TEST(IntegratorAnalytic, CutOutHalfOfASquareLight) {
+  const float e = 500, rho = 0.6f;
+  Scene scene;
+  scene.materials.push_back(make_diffuse_material(Color(rho)));
+  TriangleMesh plane;
+  plane.positions = {{-e, 0, -e}, {-e, 0, e}, {e, 0, e}, {e, 0, -e}};  // counter-clockwise seen from +y
+  plane.indices = {0, 1, 2, 0, 2, 3};
+  plane.material = 0;
+  scene.geometry.add_mesh(std::move(plane));
+  TriangleMesh square;
+  // Two triangles with their own vertices, clockwise seen from +y (facing down); the second is cut out by its
+  // vertex alpha (0, below the default cutoff 0.5).
+  square.positions = {{-e, 1, -e}, {e, 1, e}, {e, 1, -e}, {-e, 1, -e}, {-e, 1, e}, {e, 1, e}};
+  square.indices = {0, 2, 1, 3, 5, 4};
+  square.colors = {{1, 1, 1, 1}, {1, 1, 1, 1}, {1, 1, 1, 1}, {1, 1, 1, 0}, {1, 1, 1, 0}, {1, 1, 1, 0}};
+  square.alpha = AlphaMask{};
+  square.material = 0;
+  square.light = 0;
+  scene.lights.push_back(make_mesh_light(square, Color(1.0f), std::nullopt, /*two_sided=*/false));
+  scene.geometry.add_mesh(std::move(square));
+  scene.camera = make_camera({2, 0.5f, 0.5f}, {0, 0, 0}, 0.005f);
+  scene.settings.width = scene.settings.height = 4;
+  scene.settings.max_depth = 1;
+  scene.finalize();
+  const double expected = rho * 0.5 * (1 - 2e-6);
+  for (const Case& c : all_variants()) {
+    const Film film = render_scene(scene, c, 2000);
+    expect_region(test::region_mean(film, [](int, int) { return true; }), expected, c.label() + " half-cut light");
   }
 }
 
