@@ -8,8 +8,11 @@ namespace lumis {
 
 float mis_weight(float pdf_a, float pdf_b, MisHeuristic heuristic) {
   if (heuristic == MisHeuristic::Power) {
-    pdf_a *= pdf_a;
-    pdf_b *= pdf_b;
+    // Squared in double: a float density above 1.8e19 (a light smaller than 1e-10 of its distance) overflows
+    // float when squared, which made both weights 0 and dropped the light.
+    const double a = double(pdf_a) * pdf_a, b = double(pdf_b) * pdf_b;
+    const double w = a / (a + b);
+    return std::isfinite(w) ? static_cast<float>(w) : 0.0f;
   }
   const float w = pdf_a / (pdf_a + pdf_b);
   return std::isfinite(w) ? w : 0.0f;

@@ -1,7 +1,8 @@
 // draw_lights (integrators/path.cpp), the light choices and light samples of a bounce's lanes drawn together,
 // against the selector and each light drawing for one receiver at a time, bit for bit: one sphere light (the
 // vectorised paths), mixed lights (spheres, a quad, a mesh) grouped by the light chosen, and more lights than a
-// batch has lanes (one receiver at a time), with lanes listed out of order and some lanes left out.
+// batch has lanes (one receiver at a time), with lanes listed out of order and some lanes left out. Also the MIS
+// weight (path.cpp's mis_weight) at extreme densities.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -91,6 +92,21 @@ TEST(DrawLights, MoreLightsThanLanesEqualOneReceiverAtATime) {
     scene.lights.push_back(make_sphere_light({6 * rng.next_float() - 3, 2 + rng.next_float(), 6 * rng.next_float() - 3},
                                              0.05f, {1, 1, 1}));
   expect_draws_match(scene, "many", false);
+}
+
+// The two weights of a pair of strategies sum to one, for both heuristics, also where a density's square is beyond
+// float's range (a light smaller than 1e-10 of its distance has a density above 1.8e19 per steradian).
+TEST(MisWeight, WeightsOfTwoStrategiesSumToOneAtAnyScale) {
+  for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power}) {
+    for (float scale : {1e-30f, 1.0f, 1e19f, 1e30f}) {
+      const float a = 3 * scale, b = scale;
+      const float wa = mis_weight(a, b, h), wb = mis_weight(b, a, h);
+      EXPECT_NEAR(wa, h == MisHeuristic::Power ? 0.9f : 0.75f, 1e-6f) << scale;
+      EXPECT_NEAR(wa + wb, 1.0f, 1e-6f) << scale;
+    }
+    EXPECT_EQ(mis_weight(0, 0, h), 0.0f);
+    EXPECT_EQ(mis_weight(2, 0, h), 1.0f);
+  }
 }
 
 }  // namespace
