@@ -33,7 +33,10 @@ class EnvironmentBase : public Light {
  protected:
   virtual float mean_luminance() const = 0;
   std::optional<LightSample> make_sample(const LightSampleContext& ctx, Vec3 wi, float pdf) const {
-    return std::make_optional<LightSample>(le_escaped(wi), wi, INFINITY, pdf, ctx.p + wi * (2 * scene_radius_), -wi);
+    return make_sample(ctx, wi, pdf, le_escaped(wi));
+  }
+  std::optional<LightSample> make_sample(const LightSampleContext& ctx, Vec3 wi, float pdf, Color le) const {
+    return std::make_optional<LightSample>(le, wi, INFINITY, pdf, ctx.p + wi * (2 * scene_radius_), -wi);
   }
   float scene_radius_ = 1;
 };
@@ -82,13 +85,17 @@ class ImageEnvironment final : public EnvironmentBase {
     mean_lum_ = static_cast<float>(lum_integral / (4 * kPi)) * std::max(scale_, 0.0f);
   }
 
-  /// Solid angle: P(texel) / (texel solid angle), uniform in solid angle inside each texel.
+  /// Solid angle: P(texel) / (texel solid angle), uniform in solid angle inside each texel. The radiance is the
+  /// sampled texel's: a direction on a texel's edge may look up its neighbour (rounding of the mapping), and the
+  /// neighbour's radiance over this texel's density would be a firefly next to a bright texel.
   std::optional<LightSample> sample(const LightSampleContext& ctx, Vec2 u) const override {
     float pdf_uv = 0;
     const Vec2 uv = dist_.sample_continuous(u, &pdf_uv);
     if (!(pdf_uv > 0)) return std::nullopt;
-    const int h = image_->height;
+    const int w = image_->width, h = image_->height;
+    // The texel as Distribution2D::pdf() finds it (sample_continuous keeps uv inside the texel it chose).
     const int row = std::clamp(static_cast<int>(uv.y * h), 0, h - 1);
+    const int col = std::clamp(static_cast<int>(uv.x * w), 0, w - 1);
     // The position inside the row is uniform; spend it uniformly in cos(theta), not in theta, so that the density
     // is constant over the texel's solid angle, like the nearest-texel radiance.
     const float frac = clamp(uv.y * h - row, 0.0f, 1.0f);
@@ -96,7 +103,7 @@ class ImageEnvironment final : public EnvironmentBase {
     const float sin_theta = safe_sqrt(1 - cos_theta * cos_theta);
     const float phi = 2 * kPi * uv.x;
     const Vec3 d_map{-sin_theta * std::sin(phi), cos_theta, sin_theta * std::cos(phi)};
-    return make_sample(ctx, to_world(d_map), solid_angle_pdf(pdf_uv, row));
+    return make_sample(ctx, to_world(d_map), solid_angle_pdf(pdf_uv, row), image_->rgb(col, row) * scale_);
   }
 
   /// Solid angle, the density of sample() at wi (on_light unused).

@@ -3,6 +3,7 @@
 // radiance is the nearest texel, zero wherever the density is zero; sample() agrees with pdf() and le_escaped().
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -126,6 +127,37 @@ TEST(EnvironmentLight, SampleAgreesWithPdfAndNearestTexelRadiance) {
   EXPECT_EQ(plain->le_escaped({0.05f, -0.01f, -1}).x, 7.0f);
   const auto turned = make_image_environment(img, 1.0f, 90.0f);
   EXPECT_EQ(turned->le_escaped({-1, -0.01f, -0.05f}).x, 7.0f) << "+90 degrees about +Y takes -Z to -X";
+}
+
+// Sampling by luminance x solid angle makes luminance(radiance) / pdf the same for every sample: the map's
+// luminance integral x scale. A sample whose radiance came from a neighbouring texel (a direction on a texel's edge)
+// breaks it by the neighbours' ratio. A 2048 x 1024 map of random texels (ratios up to 10^4), 10^6 samples, relative
+// deviation 1e-4 allowed for float rounding. Deterministic.
+TEST(EnvironmentLight, RadianceOverPdfIsConstant) {
+  const int w = 2048, h = 1024;
+  auto img = std::make_shared<Image>(w, h, std::vector<std::string>{"R", "G", "B"});
+  Pcg32 rng(85, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float v = std::pow(10.0f, 4 * rng.next_float() - 2);
+      for (int c = 0; c < 3; ++c) img->at(x, y, c) = v;
+    }
+  const auto light = make_image_environment(img, 1.5f, 30.0f);
+  double integral = 0;  // of luminance over the sphere: texel solid angle 2 pi / w x dcos
+  for (int y = 0; y < h; ++y) {
+    const double dcos = std::cos(kPi * double(y) / h) - std::cos(kPi * double(y + 1) / h);
+    for (int x = 0; x < w; ++x) integral += img->at(x, y, 0) * dcos * 2 * kPi / w;
+  }
+  int off = 0;
+  double worst = 0;
+  for (int i = 0; i < 1'000'000; ++i) {
+    const auto s = light->sample(kCtx, {rng.next_float(), rng.next_float()});
+    ASSERT_TRUE(s.has_value());
+    const double dev = std::abs(luminance(s->le) / s->pdf / (1.5 * integral) - 1);
+    worst = std::max(worst, dev);
+    off += dev > 1e-4;
+  }
+  EXPECT_EQ(off, 0) << "worst relative deviation " << worst;
 }
 
 }  // namespace
