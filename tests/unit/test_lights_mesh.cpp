@@ -159,7 +159,8 @@ TEST(MeshLight, SamplePdfEqualsPdfWithPerTriangleFallback) {
 
 // A cut-out (alphaMode MASK) emits nothing: rays pass through it, so light samples must not land there. Two
 // triangles side by side, the second cut out by its vertex alpha: every sample lands on the first, and E[1/pdf] is
-// the first one's solid angle alone (within 5 standard errors, false failure ~ 6e-7 per comparison).
+// the first one's solid angle alone; then alpha varying over one triangle. Means within 5 standard errors (false
+// failure ~ 6e-7 per comparison).
 TEST(MeshLight, CutOutEmitsNothing) {
   TriangleMesh mesh;
   mesh.positions = {{-1, -1, 1}, {0, -1, 1}, {0, 1, 1}, {0, -1, 1}, {1, -1, 1}, {0, 1, 1}};
@@ -188,6 +189,29 @@ TEST(MeshLight, CutOutEmitsNothing) {
     EXPECT_EQ(in_cut_out, 0);
     EXPECT_NEAR(mean, exact, 5 * se + 1e-5 * exact);
     EXPECT_NEAR(empty, n / 2, 0.02 * n) << "the two triangles have equal areas: half the samples are empty";
+  }
+  // Alpha varying over one triangle, 1 at its first corner and 0 at the others: what is left (alpha >= 0.5) is the
+  // quarter at that corner, the triangle (v0, (v0 + v1) / 2, (v0 + v2) / 2).
+  TriangleMesh tri;
+  tri.positions = {{-1, -1, 1}, {0, 1, 1}, {1, -1, 1}};  // facing -z
+  tri.indices = {0, 1, 2};
+  tri.colors = {{1, 1, 1, 1}, {1, 1, 1, 0}, {1, 1, 1, 0}};
+  tri.alpha = AlphaMask{};
+  const Vec3 v0 = tri.positions[0], m1 = (v0 + tri.positions[1]) * 0.5f, m2 = (v0 + tri.positions[2]) * 0.5f;
+  const double corner = triangle_solid_angle(ctx.p, v0, m1, m2);
+  for (TriangleSampling m : {TriangleSampling::Area, TriangleSampling::SphericalTriangle}) {
+    const auto light = make_mesh_light(tri, {1, 1, 1}, std::nullopt, false, m);
+    Pcg32 rng(82, 5);
+    double sum = 0, sum2 = 0;
+    const int n = 100'000;
+    for (int i = 0; i < n; ++i) {
+      const auto s = light->sample(ctx, {rng.next_float(), rng.next_float()});
+      const double inv = s ? 1.0 / s->pdf : 0.0;
+      sum += inv;
+      sum2 += inv * inv;
+    }
+    const double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+    EXPECT_NEAR(mean, corner, 5 * se + 1e-5 * corner);
   }
 }
 
