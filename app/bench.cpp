@@ -201,7 +201,7 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   // The benchmark's defaults, then the command line's (--width alone keeps them square, as any override does).
   s.width = s.height = o.quick ? 32 : 256;
   s.spp = o.quick ? 1 : 4;
-  apply_overrides(o.overrides, s);
+  apply_overrides(o.overrides, *scene);
   s.time_budget = 0;
   scene->update_light_selector();
   res.triangles = scene->geometry.triangle_count();

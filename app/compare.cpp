@@ -123,7 +123,7 @@ int run_compare(const CompareArgs& args) {
       throw UsageError("compare: -o " + dir.string() + ": " + problem + " (give a folder for the outputs)");
     names = parse_integrator_list(args.integrators);
     scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera});
-    apply_overrides(args.overrides, scene->settings);
+    apply_overrides(args.overrides, *scene);
     if (args.overrides.spp) scene->settings.time_budget = 0;  // --spp asks for equal samples, over the scene's time
     scene->update_light_selector();
     if (!args.crop.empty()) crop = parse_crop(args.crop, scene->settings.width, scene->settings.height);

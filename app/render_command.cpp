@@ -114,7 +114,7 @@ int run_render(const RenderArgs& args) {
   std::unique_ptr<Scene> scene;
   try {
     scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera});
-    apply_overrides(args.overrides, scene->settings);
+    apply_overrides(args.overrides, *scene);
     scene->update_light_selector();
   } catch (const SceneError& e) {
     std::cerr << "lumis: " << e.what() << "\n";

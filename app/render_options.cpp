@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <stdexcept>
 
+#include "app/json_scene.h"
 #include "app/render_overrides.h"
 #include "integrators/integrator.h"
 
@@ -58,6 +59,12 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
     else throw std::invalid_argument("--uniform-measure: unknown measure '" + *o.uniform_measure +
                                      "' (valid: theta-phi, solid-angle)");
   }
+}
+
+void apply_overrides(const RenderOverrides& o, Scene& scene) {
+  apply_overrides(o, scene.settings);
+  if (scene.framed)
+    scene.camera = frame_bounds(*scene.framed, float(scene.settings.width) / float(scene.settings.height));
 }
 
 std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::vector<std::string>& integrators) {

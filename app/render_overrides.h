@@ -26,6 +26,9 @@ struct RenderOverrides {
 
 /// Apply overrides to settings; throws std::invalid_argument for bad names (listing valid ones).
 void apply_overrides(const RenderOverrides& o, RenderSettings& s);
+/// Apply overrides to the scene's settings, and frame a generated camera (Scene::framed) again for the final image
+/// size, so that the scene fits a --width/--height of another aspect ratio too.
+void apply_overrides(const RenderOverrides& o, Scene& scene);
 /// Warnings for overrides given on the command line that none of the integrators uses (for example
 /// --mis-light-probability with nee_mis), one sentence each.
 std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::vector<std::string>& integrators);

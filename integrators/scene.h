@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,9 @@ struct Scene {
   Camera camera;
   RenderSettings settings;
   std::string source;        ///< file the scene came from (for messages)
+  /// Set when the file has no camera and `camera` was generated to frame these bounds for the film's aspect ratio
+  /// (app/json_scene.h, frame_bounds): a new image size calls for framing them again.
+  std::optional<Bounds3> framed;
 
   /// After all geometry and lights are added: build the BVH, preprocess lights, build the light selector.
   void finalize();

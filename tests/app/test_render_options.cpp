@@ -3,6 +3,8 @@
 // chosen integrators reads are named in a warning. The command-line parsing itself is in tests/cli/outputs.sh.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "app/render_overrides.h"
+#include "app/scene_loader.h"
 
 using namespace lumis;
 
@@ -146,4 +149,35 @@ TEST(RenderOptions, OptionsNoChosenIntegratorReadsAreNamed) {
                 "--mis-light-probability only affects --integrator mis; ignored for light, uniform",
                 "--mis-heuristic only affects mis and nee_mis; ignored for light, uniform"}));
   EXPECT_TRUE(unused_overrides({}, {"bsdf"}).empty());
+}
+
+// A scene file without a camera is framed for its film's aspect ratio; --width and --height of another ratio frame
+// it again, so that a tall image still shows the whole scene (its bounding sphere inside the narrower field of
+// view, and not lost in the distance). A scene with a camera keeps it.
+TEST(RenderOptions, ANewAspectRatioFramesAGeneratedCameraAgain) {
+  const std::string shapes = R"("materials": {"m": {"type": "diffuse"}},
+      "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}])";
+  for (const auto& [w, h] : {std::pair{100, 400}, std::pair{400, 100}}) {
+    const auto scene = load_scene_text(R"({"film": {"width": 400, "height": 400}, )" + shapes + "}", "framed.json");
+    ASSERT_TRUE(scene->framed.has_value());
+    RenderOverrides o;
+    o.width = w;
+    o.height = h;
+    apply_overrides(o, *scene);
+    const Camera& c = scene->camera;
+    const float half_y = 0.5f * c.fov_y_degrees * kPi / 180;
+    const float half_x = std::atan(std::tan(half_y) * float(w) / float(h));
+    // The unit sphere's bounding box [-1, 1]^3 has a bounding sphere of radius sqrt(3) about the origin.
+    const float seen = std::asin(std::sqrt(3.0f) / length(c.from - c.to));
+    EXPECT_LT(seen, std::min(half_x, half_y)) << w << " x " << h;
+    EXPECT_GT(seen, 0.9f * std::min(half_x, half_y)) << w << " x " << h;
+  }
+  const auto placed = load_scene_text(R"({"camera": {"from": [0, 0, 9], "to": [0, 0, 0]}, )" + shapes + "}",
+                                      "placed.json");
+  EXPECT_FALSE(placed->framed.has_value());
+  RenderOverrides o;
+  o.width = 100;
+  o.height = 400;
+  apply_overrides(o, *placed);
+  EXPECT_EQ(placed->camera.from, Vec3(0, 0, 9));
 }
