@@ -10,6 +10,9 @@ namespace lumis::gltf {
 
 namespace {
 
+// Elements of an accessor without a bufferView (zeros, then sparse values): 2^26, 800 MB of mat4 at most.
+constexpr uint64_t kMaxZeroAccessorCount = uint64_t(1) << 26;
+
 int component_size(int type) {
   switch (type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
@@ -168,7 +171,12 @@ Packed pack_accessor(const Context& ctx, int index, const std::string& where, co
   p.count = a.count;
   // Guards the size arithmetic below; no real accessor comes near 2^32 elements.
   if (a.count > (uint64_t(1) << 32)) ctx.fail(at, "count " + std::to_string(a.count) + " is too large");
-  p.bytes.assign(p.count * p.elem_size, 0);  // no bufferView: zeros, as the spec says
+  // Without a bufferView the elements are zeros (then sparse values), as the spec says: nothing in the file bounds
+  // their number, so lumis does (a hostile count would allocate without limit).
+  if (a.bufferView < 0 && a.count > kMaxZeroAccessorCount)
+    ctx.fail(at, "count " + std::to_string(a.count) + " without a bufferView (zeros, then sparse values) is more than "
+                 "lumis reads (" + std::to_string(kMaxZeroAccessorCount) + ")" + used);
+  if (a.bufferView < 0) p.bytes.assign(p.count * p.elem_size, 0);
 
   if (a.bufferView >= 0) {
     const auto [data, size] = buffer_view_bytes(ctx, a.bufferView, at + ".bufferView");
@@ -185,6 +193,8 @@ Packed pack_accessor(const Context& ctx, int index, const std::string& where, co
                          " bytes, but bufferViews[" + std::to_string(a.bufferView) + "] has " +
                          std::to_string(size) + used);
     }
+    // Allocated only now that the buffer view is known to hold every element.
+    p.bytes.resize(p.count * p.elem_size);
     for (size_t i = 0; i < p.count; ++i)
       std::memcpy(&p.bytes[i * p.elem_size], data + a.byteOffset + i * stride, p.elem_size);
   }

@@ -92,8 +92,11 @@ void explain_rejection(const Context& ctx, const std::string& path, bool binary)
   const auto doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (!doc.is_object()) return;
   if (auto a = doc.find("asset"); a != doc.end() && a->is_object() && a->contains("version") &&
-                                  (*a)["version"].is_string())
-    check_version(ctx, (*a)["version"], a->value("minVersion", std::string()));
+                                  (*a)["version"].is_string()) {
+    // Not a->value("minVersion", ...): that throws for a minVersion of another type, which tinygltf ignores.
+    const auto mv = a->find("minVersion");
+    check_version(ctx, (*a)["version"], mv != a->end() && mv->is_string() ? mv->get<std::string>() : std::string());
+  }
   if (auto b = doc.find("buffers"); b != doc.end() && b->is_array())
     for (size_t i = 0; i < b->size(); ++i) {
       const auto& buffer = (*b)[i];

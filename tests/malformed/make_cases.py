@@ -294,6 +294,19 @@ case("gltf_accessor_offset_oob", ".gltf", embed(*variant(set_path(["accessors", 
      "accessors[1]")
 case("gltf_accessor_huge_count", ".gltf", embed(*variant(set_path(["accessors", 0, "count"], 2 ** 40))),
      "accessors[0]")
+# Found by reading: a count just under the 2^32 guard allocated count x element size (48 GiB here) before the
+# bounds check; an accessor without a bufferView has no buffer to bound it at all.
+case("gltf_accessor_count_2e32", ".gltf", embed(*variant(set_path(["accessors", 0, "count"], 2 ** 32))),
+     "bytes, but bufferViews[0] has 36")
+
+
+def zero_accessor(doc):
+    del doc["accessors"][0]["bufferView"]
+    doc["accessors"][0]["count"] = 2 ** 30
+
+
+case("gltf_zero_accessor_huge", ".gltf", embed(*variant(zero_accessor)),
+     "accessors[0]: count 1073741824 without a bufferView")
 case("gltf_bufferview_oob", ".gltf", embed(*variant(set_path(["bufferViews", 1, "byteLength"], 1 << 20))),
      "bufferViews[1]")
 case("gltf_bufferview_index_oob", ".gltf", embed(*variant(set_path(["accessors", 0, "bufferView"], 9))),
@@ -419,6 +432,11 @@ case("gltf_float_indices", ".gltf", embed(*variant(set_path(["accessors", 1, "co
 case("gltf_missing_buffer_uri", ".gltf",
      json.dumps(dict(good_doc, buffers=[{"byteLength": len(good_data), "uri": "no-such-buffer.bin"}])),
      "buffers[0].uri: buffer file 'no-such-buffer.bin' not found (looked for")
+# A minVersion that is not a string (tinygltf ignores it) must not turn the explanation into a JSON type error.
+case("gltf_min_version_number", ".gltf",
+     json.dumps(dict(good_doc, asset={"version": "2.0", "minVersion": 2},
+                     buffers=[{"byteLength": len(good_data), "uri": "no-such-buffer.bin"}])),
+     "buffers[0].uri: buffer file 'no-such-buffer.bin' not found")
 # A glTF shape's file: .gltf or .glb, not a folder; errors inside it name the shape too.
 case("json_gltf_wrong_extension", ".json", dump(scene(shapes=[{"type": "gltf", "file": "json_empty_object.json"}])),
      "/shapes/0/file: expected a .gltf or .glb file, found \".json\"")
