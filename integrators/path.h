@@ -223,7 +223,8 @@ class PathIntegrator final : public Integrator {
     if (aov) {
       aov->albedo = hit.material >= 0 ? scene.materials[hit.material]->albedo(hit) : Color(0);
       aov->normal = can_scatter ? v->frame.n : hit.ng;
-      aov->depth = hit.t * length(ray.d);
+      // From the camera's position: camera rays start near_clip along their (unit) direction.
+      aov->depth = scene.camera.near_clip + hit.t * length(ray.d);
     }
     if (bounce >= max_depth_ || !can_scatter) return false;
 

@@ -7,6 +7,7 @@
 //    point straight below has radiance rho L (r/h)^2;
 //  - a large emitting square (radiance L) over a diffuse plane, half of it cut out (alphaMode MASK) along a diagonal
 //    through the zenith, direct lighting only: by symmetry half of pi L reaches the point below, radiance rho L / 2.
+// Also the depth AOV against the distance to a plane.
 // Each check is a z-test of a region mean against the exact value, using the film's own variance estimate.
 // Level: alpha = 0.01 for the whole file, Sidak-split over all 106 z-tests (35 regions x 3 channels, and the
 // silhouette's coverage), so the file fails by chance with probability below 1% for a correct renderer at any
@@ -238,6 +239,37 @@ TEST(IntegratorAnalytic, SphereLightOverPlane) {
     expect_region(test::region_mean(film, [](int, int) { return true; }), expected,
                   c.label() + " plane below light");
   }
+}
+
+// --- Depth AOV -------------------------------------------------------------------------------------------------
+
+// The Z channel is the first hit's distance from the camera's position, also when camera rays start at a near clip
+// distance (glTF's znear): a plane 2 units in front of a camera with near clip 0.5 reads 2, not 1.5. Deterministic
+// (a 0.01-degree field of view: every ray within 1e-8 of the axis).
+TEST(IntegratorAnalytic, DepthIsTheDistanceFromTheCamera) {
+  Scene scene;
+  scene.materials.push_back(make_diffuse_material(Color(0.5f)));
+  TriangleMesh plane;
+  plane.positions = {{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}};  // counter-clockwise seen from +z
+  plane.indices = {0, 1, 2, 0, 2, 3};
+  plane.material = 0;
+  scene.geometry.add_mesh(std::move(plane));
+  scene.lights.push_back(make_constant_environment(Color(1)));
+  scene.environment = 0;
+  scene.camera = make_camera({0, 0, 2}, {0, 0, 0}, 0.01f);
+  scene.camera.near_clip = 0.5f;
+  scene.settings.width = scene.settings.height = 2;
+  scene.settings.integrator = "nee_mis";
+  scene.finalize();
+  FilmOptions aovs;
+  aovs.depth = true;
+  const Image img = test::render_film(scene, 4, {}, aovs).film.to_image();
+  int z = -1;
+  for (int c = 0; c < img.channels; ++c)
+    if (img.channel_names[c] == "Z") z = c;
+  ASSERT_GE(z, 0);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) EXPECT_NEAR(img.at(x, y, z), 2.0f, 1e-5f) << x << ", " << y;
 }
 
 // --- Half-cut-out square light over a plane, direct lighting -----------------------------------------------------
