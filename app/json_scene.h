@@ -72,4 +72,10 @@ class JsonSceneBuilder {
 /// vertical field of view, far enough back that the bounding sphere fits the image of the given aspect ratio.
 Camera frame_bounds(const Bounds3& bounds, float aspect);
 
+// Embree asserts on rays whose origin lies beyond about 1.8e18 in any coordinate, and products of two lengths
+// (cross products, squared distances) must fit in float: every coordinate of the geometry and the camera stays
+// within this many scene units of the origin. (A framing camera stands about 3 extents away, 3 / aspect for a
+// tall image: an extreme aspect ratio can put it out of range.)
+inline constexpr float kMaxCoordinate = 1e15f;
+
 }  // namespace lumis

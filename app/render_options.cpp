@@ -2,6 +2,7 @@
 // naming those that none of the chosen integrators reads.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <initializer_list>
 #include <stdexcept>
 
@@ -63,8 +64,17 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
 
 void apply_overrides(const RenderOverrides& o, Scene& scene) {
   apply_overrides(o, scene.settings);
-  if (scene.framed)
-    scene.camera = frame_bounds(*scene.framed, float(scene.settings.width) / float(scene.settings.height));
+  if (!scene.framed) return;
+  scene.camera = frame_bounds(*scene.framed, float(scene.settings.width) / float(scene.settings.height));
+  const float far = max_component(abs(scene.camera.from));
+  if (!(far <= kMaxCoordinate)) {
+    char distance[32];
+    std::snprintf(distance, sizeof distance, "%.3g", far);
+    throw std::invalid_argument("--width/--height: to frame the scene in a " + std::to_string(scene.settings.width) +
+                                " x " + std::to_string(scene.settings.height) + " image the camera would stand " +
+                                distance + " scene units from the origin, beyond the 1e15 that rays can start "
+                                "from; choose a less extreme aspect ratio or give the scene a camera");
+  }
 }
 
 std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::vector<std::string>& integrators) {

@@ -24,10 +24,6 @@ namespace {
 
 constexpr int kMaxResolution = 16384;  // per side; 16384^2 = 2^28 pixels, about 3 GiB of float RGB accumulators
 constexpr int kGltfImageWidth = 512;
-// Embree asserts on rays whose origin lies beyond about 1.8e18 in any coordinate, and products of two lengths
-// (cross products, squared distances) must fit in float: every coordinate of the geometry and the camera stays
-// within this many scene units of the origin (the framing camera stands about 6 extents away).
-constexpr float kMaxCoordinate = 1e15f;
 // At the other end, products of three lengths (Embree's intersection terms, squared areas) reach float's denormals
 // in scenes much smaller than this, and images go wrong: the geometry's bounding box must be at least this large.
 constexpr float kMinSize = 1e-12f;
@@ -54,11 +50,15 @@ void check_extent(const Scene& scene, const std::string& path, const std::string
                                      " scene units; it must span at least " + format_number(kMinSize) +
                                      " (scale the scene up)");
   }
-  // A framing camera (no camera location) stands within about 6 extents: only a given one needs the check.
-  if (!camera_location.empty() && !(max_component(abs(scene.camera.from)) <= kMaxCoordinate))
-    throw SceneError(path, camera_location, "the camera is " + format_number(max_component(abs(scene.camera.from))) +
-                                                " scene units from the origin; coordinates must stay within " +
-                                                format_number(kMaxCoordinate));
+  // A framing camera (no camera location) stands a few extents away, more for an extreme aspect ratio.
+  if (!(max_component(abs(scene.camera.from)) <= kMaxCoordinate))
+    throw SceneError(path, camera_location,
+                     std::string(camera_location.empty() ? "the framing camera (for a " +
+                                                               std::to_string(scene.settings.width) + " x " +
+                                                               std::to_string(scene.settings.height) + " image)"
+                                                         : "the camera") +
+                         " is " + format_number(max_component(abs(scene.camera.from))) +
+                         " scene units from the origin; coordinates must stay within " + format_number(kMaxCoordinate));
 }
 
 std::string read_text(const std::string& path) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "app/render_overrides.h"
+#include "app/scene_error.h"
 #include "app/scene_loader.h"
 
 using namespace lumis;
@@ -180,4 +181,28 @@ TEST(RenderOptions, ANewAspectRatioFramesAGeneratedCameraAgain) {
   o.height = 400;
   apply_overrides(o, *placed);
   EXPECT_EQ(placed->camera.from, Vec3(0, 0, 9));
+}
+
+// An extreme aspect ratio puts a framing camera thousands of extents away: beyond the 1e15 scene units that rays can
+// start from, it is an error naming the image size (from the command line or from the file's film), not a ray that
+// Embree aborts on.
+TEST(RenderOptions, AFramingCameraOutOfRangeIsAnError) {
+  const std::string big = R"("materials": {"m": {"type": "diffuse"}},
+      "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1e14, "material": "m"}])";
+  const auto scene = load_scene_text(R"({"film": {"width": 400, "height": 400}, )" + big + "}", "big.json");
+  RenderOverrides o;
+  o.width = 1;
+  o.height = 16384;
+  try {
+    apply_overrides(o, *scene);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("1 x 16384 image"), std::string::npos) << e.what();
+  }
+  try {
+    load_scene_text(R"({"film": {"width": 1, "height": 16384}, )" + big + "}", "big.json");
+    ADD_FAILURE() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("the framing camera (for a 1 x 16384 image)"), std::string::npos) << e.what();
+  }
 }
