@@ -2,14 +2,35 @@
 // by building the Hit a BSDF ray would have made (the lights themselves never intersect rays).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
 
 #include "core/geometry.h"
 #include "core/math.h"
+#include "core/rng.h"
+#include "lights/light.h"
 
 namespace lumis::test {
+
+/// Monte Carlo estimate of the solid angle (steradians) over which `light` samples from ctx: the mean of 1/pdf over
+/// n samples (an empty sample counts 0), with its standard error.
+struct SolidAngleEstimate {
+  double mean, se;
+};
+inline SolidAngleEstimate mc_solid_angle(const Light& light, const LightSampleContext& ctx, Pcg32 rng,
+                                         int n = 100'000) {
+  double sum = 0, sum2 = 0;
+  for (int i = 0; i < n; ++i) {
+    const auto s = light.sample(ctx, {rng.next_float(), rng.next_float()});
+    const double inv = s ? 1.0 / s->pdf : 0.0;
+    sum += inv;
+    sum2 += inv * inv;
+  }
+  const double mean = sum / n;
+  return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n)};
+}
 
 /// Every crossing (t > 0) of the ray o + t d (d unit) with the sphere, nearest first, as Hits with outward ng.
 inline std::vector<Hit> sphere_hits(Vec3 o, Vec3 d, Vec3 c, float r) {

@@ -112,16 +112,7 @@ TEST(MeshLight, SolidAngleMatchesVanOosterom) {
                    cc = mesh.positions[mesh.indices[3 * t + 2]];
         if (c.two_sided || dot(cross(b - a, cc - a), c.ctx.p - a) > 0) exact += triangle_solid_angle(c.ctx.p, a, b, cc);
       }
-      Pcg32 rng(61, 3);
-      double sum = 0, sum2 = 0;
-      const int n = 100'000;
-      for (int i = 0; i < n; ++i) {
-        const auto s = light->sample(c.ctx, {rng.next_float(), rng.next_float()});
-        const double inv = s ? 1.0 / s->pdf : 0.0;
-        sum += inv;
-        sum2 += inv * inv;
-      }
-      const double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+      const auto [mean, se] = test::mc_solid_angle(*light, c.ctx, Pcg32(61, 3));
       EXPECT_NEAR(mean, exact, 5 * se + 1e-5 * exact) << c.what;
       std::printf("%s, %s: MC solid angle %.5f +- %.5f, Van Oosterom-Strackee %.5f\n",
                   m == TriangleSampling::Area ? "area" : "spherical", c.what, mean, se, exact);
@@ -201,17 +192,8 @@ TEST(MeshLight, CutOutEmitsNothing) {
   const double corner = triangle_solid_angle(ctx.p, v0, m1, m2);
   for (TriangleSampling m : {TriangleSampling::Area, TriangleSampling::SphericalTriangle}) {
     const auto light = make_mesh_light(tri, {1, 1, 1}, std::nullopt, false, m);
-    Pcg32 rng(82, 5);
-    double sum = 0, sum2 = 0;
-    const int n = 100'000;
-    for (int i = 0; i < n; ++i) {
-      const auto s = light->sample(ctx, {rng.next_float(), rng.next_float()});
-      const double inv = s ? 1.0 / s->pdf : 0.0;
-      sum += inv;
-      sum2 += inv * inv;
-    }
-    const double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
-    EXPECT_NEAR(mean, corner, 5 * se + 1e-5 * corner);
+    const test::SolidAngleEstimate e = test::mc_solid_angle(*light, ctx, Pcg32(82, 5));
+    EXPECT_NEAR(e.mean, corner, 5 * e.se + 1e-5 * corner);
   }
 }
 

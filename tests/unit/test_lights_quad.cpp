@@ -117,16 +117,7 @@ TEST(QuadLight, SolidAngleMatchesFourAngleFormula) {
     const auto light = make_quad_light(kOrigin, kEdgeU, kEdgeV, kRadiance, m);
     for (const auto& ctx : kReceivers) {
       const double exact = rectangle_solid_angle(ctx.p, kOrigin, kEdgeU, kEdgeV);
-      Pcg32 rng(41, 7);
-      double sum = 0, sum2 = 0;
-      const int n = 100'000;
-      for (int i = 0; i < n; ++i) {
-        const auto s = light->sample(ctx, {rng.next_float(), rng.next_float()});
-        const double inv = s ? 1.0 / s->pdf : 0.0;
-        sum += inv;
-        sum2 += inv * inv;
-      }
-      const double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+      const auto [mean, se] = test::mc_solid_angle(*light, ctx, Pcg32(41, 7));
       EXPECT_NEAR(mean, exact, 5 * se + 1e-5 * exact);
       std::printf("%s from (%g, %g, %g): MC solid angle %.6f +- %.6f, four-angle %.6f\n",
                   m == QuadSampling::Area ? "area" : "spherical", ctx.p.x, ctx.p.y, ctx.p.z, mean, se, exact);
