@@ -173,12 +173,12 @@ Packed pack_accessor(const Context& ctx, int index, const std::string& where, co
   if (a.count > (uint64_t(1) << 32)) ctx.fail(at, "count " + std::to_string(a.count) + " is too large");
   // Without a bufferView the elements are zeros (then sparse values), as the spec says: nothing in the file bounds
   // their number, so lumis does (a hostile count would allocate without limit).
-  if (a.bufferView < 0 && a.count > kMaxZeroAccessorCount)
-    ctx.fail(at, "count " + std::to_string(a.count) + " without a bufferView (zeros, then sparse values) is more than "
-                 "lumis reads (" + std::to_string(kMaxZeroAccessorCount) + ")" + used);
-  if (a.bufferView < 0) p.bytes.assign(p.count * p.elem_size, 0);
-
-  if (a.bufferView >= 0) {
+  if (a.bufferView < 0) {
+    if (a.count > kMaxZeroAccessorCount)
+      ctx.fail(at, "count " + std::to_string(a.count) + " without a bufferView (zeros, then sparse values) is more "
+                   "than lumis reads (" + std::to_string(kMaxZeroAccessorCount) + ")" + used);
+    p.bytes.assign(p.count * p.elem_size, 0);
+  } else {
     const auto [data, size] = buffer_view_bytes(ctx, a.bufferView, at + ".bufferView");
     const auto& view = ctx.model.bufferViews[a.bufferView];
     const uint64_t stride = view.byteStride ? view.byteStride : p.elem_size;

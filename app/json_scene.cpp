@@ -150,4 +150,9 @@ Camera frame_bounds(const Bounds3& bounds, float aspect) {
   return c;
 }
 
+void frame_camera(Scene& scene, const Bounds3& bounds) {
+  scene.framed = bounds;
+  scene.camera = frame_bounds(bounds, float(scene.settings.width) / float(scene.settings.height));
+}
+
 }  // namespace lumis

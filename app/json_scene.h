@@ -71,6 +71,9 @@ class JsonSceneBuilder {
 /// A camera looking at the centre of `bounds` from the +Z side (slightly above and to the right), with a 40 degree
 /// vertical field of view, far enough back that the bounding sphere fits the image of the given aspect ratio.
 Camera frame_bounds(const Bounds3& bounds, float aspect);
+/// Give the scene a framing camera for `bounds` at its settings' aspect ratio, and remember the bounds
+/// (Scene::framed) so that a new image size can frame them again.
+void frame_camera(Scene& scene, const Bounds3& bounds);
 
 // Embree asserts on rays whose origin lies beyond about 1.8e18 in any coordinate, and products of two lengths
 // (cross products, squared distances) must fit in float: every coordinate of the geometry and the camera stays

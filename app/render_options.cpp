@@ -65,7 +65,7 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
 void apply_overrides(const RenderOverrides& o, Scene& scene) {
   apply_overrides(o, scene.settings);
   if (!scene.framed) return;
-  scene.camera = frame_bounds(*scene.framed, float(scene.settings.width) / float(scene.settings.height));
+  frame_camera(scene, *scene.framed);
   const float far = max_component(abs(scene.camera.from));
   if (!(far <= kMaxCoordinate)) {
     char distance[32];

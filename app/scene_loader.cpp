@@ -157,10 +157,7 @@ std::unique_ptr<Scene> load_json_scene(const std::string& text, const std::strin
   // A malformed camera is named before an empty scene: each section's own errors come first.
   if (auto c = root.find("camera")) parse_camera(*c, scene->camera);
   if (shapes.empty() && lights.empty()) throw SceneError(path, "", "scene is empty: it has no shapes and no lights");
-  if (!root.has("camera")) {
-    scene->framed = builder.bounds();
-    scene->camera = frame_bounds(*scene->framed, float(scene->settings.width) / float(scene->settings.height));
-  }
+  if (!root.has("camera")) frame_camera(*scene, builder.bounds());
   check_extent(*scene, path, root.has("camera") ? "/camera/from" : "");
   scene->finalize();
   return scene;
@@ -219,12 +216,10 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadO
     scene->environment = static_cast<int>(scene->lights.size());
     scene->lights.push_back(make_constant_environment(Color(1.0f)));
   }
-  if (gltf.camera) {
+  if (gltf.camera)
     scene->camera = *gltf.camera;
-  } else {
-    scene->framed = gltf.bounds.empty() ? builder.bounds() : gltf.bounds;
-    scene->camera = frame_bounds(*scene->framed, float(scene->settings.width) / float(scene->settings.height));
-  }
+  else
+    frame_camera(*scene, gltf.bounds.empty() ? builder.bounds() : gltf.bounds);
   check_extent(*scene, path, gltf.camera ? "camera" : "");
   scene->finalize();
   return scene;
