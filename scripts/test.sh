@@ -20,7 +20,7 @@ build=${BUILD_DIR:-build}
 stages=("$@")
 [ ${#stages[@]} -eq 0 ] && stages=(release asan tsan fuzz)
 # Heavy image-statistics tests (seconds in Release, minutes under ASan); Release runs them.
-asan_exclude=${LUMIS_ASAN_EXCLUDE:-VariantAgreement|Efficiency|EndToEnd|cli_compare}
+asan_exclude=${LUMIS_ASAN_EXCLUDE:-test_variant_agreement|test_end_to_end|cli_compare}
 log=$(mktemp -d)
 trap 'rm -rf "$log"' EXIT
 

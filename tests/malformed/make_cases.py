@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the malformed-input cases of tests/malformed/ (run by tests/cli/malformed.sh).
+"""Writes the malformed-input cases of tests/malformed/ (run by tests/app/test_malformed.cpp).
 
 Each case is an input file NAME.EXT (a lumis JSON scene, a .gltf, a .glb or an image) and NAME.expect:
 
