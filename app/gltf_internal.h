@@ -84,10 +84,29 @@ class AccessorCache {
 /// Raw bytes of a validated buffer view (offset and length inside its buffer).
 std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx, int view, const std::string& where);
 
-// --- materials and textures (gltf_materials.cpp) ---
+// --- URIs (gltf_uri.cpp) ---
 
-/// Path of a relative URI (percent-escapes such as %20 decoded) in the glTF file's folder.
+/// A relative URI's file name: percent-escapes such as %20 decoded, a '+' kept (RFC 3986).
+std::string decode_uri(const std::string& uri);
+
+/// Path of a relative URI (decode_uri) in the glTF file's folder.
 std::string resolve_uri(const Context& ctx, const std::string& uri);
+
+/// tinygltf 2.7 decodes a buffer's or image's URI as a web form does, '+' as a space, joins it to the folder and
+/// hands the path to FsCallbacks::ExpandFilePath: expand_plus_uri gives it its '+' back. `plus` maps tinygltf's
+/// reading of each URI that holds a '+' to the file name it means.
+struct PlusUris {
+  std::map<std::string, std::string> plus;
+};
+
+/// The buffers' and images' URIs in the glTF JSON `text` that hold a '+' (no parse without a '+' in the text). Two
+/// URIs that tinygltf reads alike but that name different files ("a+b.bin", "a%20b.bin") are an error.
+PlusUris plus_uris(const Context& ctx, const std::string& text);
+
+/// FsCallbacks::ExpandFilePath (user data: a PlusUris): `path` with a file name tinygltf misread put right.
+std::string expand_plus_uri(const std::string& path, void* plus_uris);
+
+// --- materials and textures (gltf_materials.cpp) ---
 
 /// Convert every material of the file, in order (textures decoded once each and shared).
 std::vector<GltfMaterial> convert_materials(Context& ctx);

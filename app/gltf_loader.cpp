@@ -112,12 +112,14 @@ void parse_file(Context& ctx, const std::string& path) {
   char magic[4] = {};
   std::ifstream(path, std::ios::binary).read(magic, 4);
   const bool binary = std::string(magic, 4) == "glTF";
-  if (const std::optional<std::string> text = json_text(path, binary)) check_depth(ctx, *text, binary);
+  const std::optional<std::string> text = json_text(path, binary);
+  if (text) check_depth(ctx, *text, binary);
+  PlusUris plus = text ? plus_uris(ctx, *text) : PlusUris{};
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&keep_image_bytes, nullptr);
-  loader.SetFsCallbacks({&regular_file_exists, &tinygltf::ExpandFilePath, &tinygltf::ReadWholeFile,
-                         &tinygltf::WriteWholeFile, nullptr});
+  loader.SetFsCallbacks({&regular_file_exists, &expand_plus_uri, &tinygltf::ReadWholeFile,
+                         &tinygltf::WriteWholeFile, &plus});
   std::string err, warn;
   const bool ok = binary ? loader.LoadBinaryFromFile(&ctx.model, &err, &warn, path)
                          : loader.LoadASCIIFromFile(&ctx.model, &err, &warn, path);

@@ -1,9 +1,7 @@
 // glTF materials and textures: pbrMetallicRoughness, emissive (with KHR_materials_emissive_strength), normal maps,
 // alpha modes, samplers and KHR_texture_transform. Each (image, colour space) pair is decoded once and shared.
-#include <cctype>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
 
 #include <tbb/parallel_for.h>
 
@@ -11,20 +9,6 @@
 #include "core/image_io.h"
 
 namespace lumis::gltf {
-
-std::string resolve_uri(const Context& ctx, const std::string& uri) {
-  std::string decoded;
-  for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      decoded += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      decoded += uri[i];
-    }
-  }
-  return (std::filesystem::path(ctx.base_dir) / decoded).string();
-}
 
 namespace {
 

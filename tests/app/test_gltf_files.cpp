@@ -356,3 +356,31 @@ TEST_F(GltfFiles, GreyTexturesBecomeRgb) {
   EXPECT_NEAR(grey_alpha.at(0, 0, 3), 60 / 255.0f, 1e-6f);
   EXPECT_NEAR(grey_alpha.at(1, 0, 3), 250 / 255.0f, 1e-6f);
 }
+
+// A '+' in a URI is a plus sign (RFC 3986, which glTF's URIs follow); tinygltf 2.7 decodes it as a space, as a web
+// form does, so a buffer named wood+stone.bin was "not found".
+TEST_F(GltfFiles, PlusInAUriIsAPlusSign) {
+  Triangle t;
+  const std::string bytes(t.bin.bytes.begin(), t.bin.bytes.end());
+  auto buffer = [&](const std::string& uri) {
+    return R"({"byteLength":)" + std::to_string(bytes.size()) + R"(,"uri":")" + uri + R"("})";
+  };
+  auto json = [&](const std::string& buffers) {
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+           R"("meshes":[{"primitives":[)" + std::string(Triangle::prim) + R"(]}],"bufferViews":)" + t.views +
+           R"(,"accessors":)" + t.accessors + R"(,"buffers":[)" + buffers + "]}";
+  };
+  auto file = [&](const std::string& name, const std::string& buffers) { return write(name, json(buffers)); };
+  write("wood+stone.bin", bytes);
+  EXPECT_EQ(triangles(load_gltf(file("plus.gltf", buffer("wood+stone.bin")))), 1u);
+  EXPECT_EQ(triangles(load_gltf(file("escaped.gltf", buffer("wood%2Bstone.bin")))), 1u);
+  EXPECT_EQ(triangles(load_gltf(write("plus.glb", make_glb(json(buffer("wood+stone.bin")), {})))), 1u);
+  // "a+b.bin" does not name a file "a b.bin".
+  write("a b.bin", bytes);
+  expect_error(file("space.gltf", buffer("a+b.bin")), {"space.gltf:buffers[0].uri", "'a+b.bin' not found"});
+  EXPECT_EQ(triangles(load_gltf(file("space20.gltf", buffer("a%20b.bin")))), 1u);
+  // Two URIs that tinygltf reads as the same file name, for two files: an error naming both, not the wrong bytes.
+  write("a+b.bin", bytes);
+  expect_error(file("both.gltf", buffer("a%20b.bin") + "," + buffer("a+b.bin")),
+               {"both.gltf:buffers[1].uri", "'a+b.bin' and buffers[0].uri 'a%20b.bin'", "rename one"});
+}
