@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <memory>
 #include <thread>
 
 #include "core/embree_util.h"
+#include "core/rng.h"
 
 namespace lumis {
 
@@ -23,6 +25,21 @@ static_assert(kTile * kTile == kLanes && kPacketSide * kPacketSide == PathBatch:
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Where pixel sample i of a render with a time budget comes from, for the stratified sampler: sample `index` of a
+/// Sampler(stratified, spp, seed). The count is not known in advance, and one stratified set sized for the 2^20
+/// samples a budget allows would spread the few taken over a random handful of its strata, no better than
+/// independent samples. Instead sample i belongs to block p = floor(log2(i + 1)), a stratified set of 2^p samples
+/// with a seed of its own: blocks of 1, 1, 2, 4, 8, ... samples, so whatever count the render stops at, its whole
+/// blocks, about half of its samples or more, are complete stratified sets.
+struct BlockSample {
+  uint32_t block, spp, seed, index;
+};
+BlockSample doubling_block(uint32_t i, uint32_t seed) {
+  const uint32_t p = static_cast<uint32_t>(std::bit_width(uint64_t{i} + 1)) - 1;
+  const uint32_t size = 1u << p;
+  return {p, size, static_cast<uint32_t>(hash_combine(seed, 0x6c756d6973000000ULL + p)), i + 1 - size};
 }
 
 }  // namespace
@@ -44,6 +61,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   const uint32_t seed = scene.settings.seed;
   const uint32_t spp = std::max(1u, options.spp);
   const bool packets = options.camera_packets;
+  const bool doubling = options.time_budget > 0 && sampler_type == SamplerType::Stratified;  // doubling_block
 
   if (options.query_logs) options.query_logs->assign(static_cast<size_t>(n_tiles), QueryLog{});
   tbb::enumerable_thread_specific<PathCounters> counters;
@@ -67,6 +85,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
         // sampler, so the numbers (and the image) are those of one-by-one tracing.
         Sampler samplers[kLanes];
         for (Sampler& s : samplers) s = Sampler(sampler_type, spp, seed);
+        uint32_t samplers_block = UINT32_MAX;  // doubling: the block `samplers` are made for
         Ray rays[kLanes];
         const Hit* primary[kLanes];
         Hit hits[kLanes];
@@ -98,7 +117,15 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
             }
           batch.n = n;
           for (uint32_t i = begin; i < end; ++i) {
-            Sampler::start_batch(samplers, n, px, py, i, jitter);  // box filter: uniform over the pixel
+            uint32_t index = i;
+            if (doubling) {
+              const BlockSample b = doubling_block(i, seed);
+              if (b.block != samplers_block)
+                for (Sampler& s : samplers) s = Sampler(sampler_type, b.spp, b.seed);
+              samplers_block = b.block;
+              index = b.index;
+            }
+            Sampler::start_batch(samplers, n, px, py, index, jitter);  // box filter: uniform over the pixel
             for (int k = 0; k < n; ++k) rays[k] = camera.generate_ray({px[k] + jitter[k].x, py[k] + jitter[k].y});
             if (packets) {
               scene.geometry.intersect_packets(rays, packet_end, n_packets, hits, found);
