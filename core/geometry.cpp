@@ -296,7 +296,7 @@ int Geometry::all_light_hits(const Ray& ray, LightHitRecord* out, int max_hits) 
   ctx.count = 0;
   RTCRayHit rh = to_embree(ray);
   rtcIntersect1(impl_->light_scene, &ctx.base, &rh);
-  return std::min(ctx.count, max_hits);
+  return ctx.count;
 }
 
 }  // namespace lumis

@@ -203,8 +203,9 @@ class Geometry {
   /// occluded(rays[i]) for i < n (n <= 16) in one Embree packet query (shadow rays of neighbouring paths).
   void occluded16(const Ray* rays, int n, bool* occluded) const;
   /// Every intersection of the ray with geometry that carries a light (light >= 0), ignoring all other geometry
-  /// and occlusion, in any order; at most max_hits are stored, the return value is the number found. The
-  /// one-sample MIS density needs every light whose solid angle contains a direction, visible or not.
+  /// and occlusion, in any order; at most max_hits are stored, the return value is the number found (more than
+  /// max_hits: query again with room for them all). The one-sample MIS density needs every light whose solid angle
+  /// contains a direction, visible or not.
   int all_light_hits(const Ray& ray, LightHitRecord* out, int max_hits) const;
 
   bool is_mesh(uint32_t geom_id) const;

@@ -1,6 +1,8 @@
 #include "integrators/path.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "materials/shading.h"
 
@@ -143,12 +145,28 @@ float light_strategy_pdf(const Scene& scene, const Hit& from, const LightSampleC
                          PathCounters& counters) {
   float pdf = 0;
   if (scene.environment >= 0) pdf += light_pdf_for_hit(scene, ctx, scene.environment, nullptr, wi);
+  // Up to kMaxHits crossings of light surfaces on the stack; a direction through more (a row of 40 sphere lights)
+  // queries again with room for all of them, since each one missed would make the mixture density too small.
   constexpr int kMaxHits = 64;
-  LightHitRecord hits[kMaxHits];
+  LightHitRecord stack_hits[kMaxHits];
+  uint32_t stack_spheres[kMaxHits];
+  const LightHitRecord* hits = stack_hits;
+  uint32_t* spheres_seen = stack_spheres;
+  std::vector<LightHitRecord> heap_hits;
+  std::vector<uint32_t> heap_spheres;
+  const Ray ray = spawn_ray(from, wi);
   ++counters.rays;
   ++counters.light_queries;
-  const int n = scene.geometry.all_light_hits(spawn_ray(from, wi), hits, kMaxHits);
-  uint32_t spheres_seen[kMaxHits];
+  int n = scene.geometry.all_light_hits(ray, stack_hits, kMaxHits);
+  if (n > kMaxHits) [[unlikely]] {
+    heap_hits.resize(static_cast<size_t>(n));
+    heap_spheres.resize(static_cast<size_t>(n));
+    ++counters.rays;
+    ++counters.light_queries;
+    n = std::min(n, scene.geometry.all_light_hits(ray, heap_hits.data(), n));
+    hits = heap_hits.data();
+    spheres_seen = heap_spheres.data();
+  }
   int n_spheres = 0;
   for (int i = 0; i < n; ++i) {
     const LightHitRecord& r = hits[i];
@@ -160,7 +178,6 @@ float light_strategy_pdf(const Scene& scene, const Hit& from, const LightSampleC
       spheres_seen[n_spheres++] = r.geom_id;
     }
     Hit h;
-    const Ray ray = spawn_ray(from, wi);
     h.p = ray.o + ray.d * r.t;
     h.t = r.t;
     scene.geometry.fill_hit(r.geom_id, r.prim_id, r.u, r.v, h);

@@ -94,6 +94,42 @@ TEST(DrawLights, MoreLightsThanLanesEqualOneReceiverAtATime) {
   expect_draws_match(scene, "many", false);
 }
 
+// The `mis` variant's light-strategy density at a direction sums every light whose solid angle holds it, visible
+// or not: here 40 sphere lights in a row straight above the receiver, 80 crossings of light surfaces, beyond the
+// 64 the query keeps on the stack. Uniform selection (1/40 each) and cap densities from 1.2 (the nearest sphere)
+// to about 4500 per steradian (the farthest) sum to 1547; the bound is 1e-5 of that, 20 times a float sum's
+// rounding. Before, the crossings past 64 were dropped: the density came out as 794.
+TEST(LightStrategyPdf, CountsEveryLightOnADirectionThroughMoreThan64LightSurfaces) {
+  Scene scene;
+  scene.settings.light_selection = LightSelection::Uniform;
+  constexpr int kSpheres = 40;
+  for (int k = 0; k < kSpheres; ++k) {
+    const Vec3 centre{0, 2.0f + 3.0f * k, 0};
+    scene.geometry.add_sphere(Sphere{centre, 1, -1, k});
+    scene.lights.push_back(make_sphere_light(centre, 1, {1, 1, 1}));
+  }
+  scene.finalize();
+  Hit from;
+  from.p = {0, 0, 0};
+  from.ng = {0, 1, 0};
+  from.front = true;
+  const LightSampleContext ctx{from.p, from.ng};
+  const Vec3 up{0, 1, 0};
+  double expected = 0;
+  for (int k = 0; k < kSpheres; ++k) {
+    Hit on;  // the sphere's near side; a sphere's density is per direction
+    on.p = {0, 1.0f + 3.0f * k, 0};
+    on.ng = {0, -1, 0};
+    on.front = true;
+    on.light = k;
+    expected += scene.light_selector.pmf(ctx, k) * scene.lights[k]->pdf(ctx, up, on);
+  }
+  PathCounters counters;
+  const float pdf = light_strategy_pdf(scene, from, ctx, up, counters);
+  EXPECT_NEAR(pdf, expected, 1e-5 * expected);
+  EXPECT_EQ(counters.light_queries, 2u) << "the stack's 64 crossings, then all 80";
+}
+
 // The two weights of a pair of strategies sum to one, for both heuristics, also where a density's square is beyond
 // float's range (a light smaller than 1e-10 of its distance has a density above 1.8e19 per steradian).
 TEST(MisWeight, WeightsOfTwoStrategiesSumToOneAtAnyScale) {
