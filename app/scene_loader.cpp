@@ -201,8 +201,9 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadO
   if (gltf.camera_aspect && *gltf.camera_aspect > 0) {
     // Keep 512 pixels across and follow the camera's aspect ratio for the height.
     scene->settings.width = kGltfImageWidth;
-    scene->settings.height = std::clamp(static_cast<int>(std::lround(kGltfImageWidth / *gltf.camera_aspect)), 1,
-                                        kMaxResolution);
+    // Clamped before rounding: a tiny ratio (1e-30) overflows lround's range, which once gave a height of 1.
+    scene->settings.height = static_cast<int>(
+        std::lround(std::clamp(double(kGltfImageWidth) / *gltf.camera_aspect, 1.0, double(kMaxResolution))));
   }
   JsonSceneBuilder builder(*scene, path);
   bool has_lamp = false;

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "core/image_io.h"
+#include "tests/app/gltf_synthetic.h"
 #include "tests/app/png_test_util.h"
 #include "tests/app/scene_loader_test_util.h"
 
@@ -316,6 +317,24 @@ TEST_F(SceneLoader, GltfCameraAspectRatioSetsTheImageHeight) {
   const auto scene = load_scene(kAssets + "/gltf/MultiUVTest/glTF/MultiUVTest.gltf");
   EXPECT_EQ(scene->settings.width, 512);
   EXPECT_EQ(scene->settings.height, 288);
+}
+
+// An extreme aspectRatio clamps the height to 1..16384 pixels: 1e-30 (a very tall image) gives 16384, as 1e-3
+// does, and 1e30 gives 1.
+TEST_F(SceneLoader, GltfCameraExtremeAspectRatioClampsTheHeight) {
+  const gltf_test::Triangle t;
+  for (const auto& [aspect, height] : {std::pair{"1e-30", 16384}, std::pair{"1e-3", 16384}, std::pair{"1e30", 1}}) {
+    const std::string file = write_file(
+        "tall.gltf", R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0},)"
+                     R"({"camera":0,"translation":[0.3,0.3,3]}],"cameras":[{"type":"perspective","perspective":)"
+                     R"({"yfov":0.8,"znear":0.01,"aspectRatio":)" + std::string(aspect) +
+                         R"(}}],"meshes":[{"primitives":[)" + gltf_test::Triangle::prim + R"(]}],"buffers":[)" +
+                         t.bin.buffer_json() + R"(],"bufferViews":)" + t.views + R"(,"accessors":)" + t.accessors +
+                         "}");
+    const auto scene = load_scene(file);
+    EXPECT_EQ(scene->settings.width, 512) << aspect;
+    EXPECT_EQ(scene->settings.height, height) << aspect;
+  }
 }
 
 // Emission read from a texture is usually a decal (the helmet's visor display), too weak to light a model: a file
