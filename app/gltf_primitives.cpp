@@ -143,14 +143,16 @@ void PrimitiveBuilder::add_mesh(int mesh, const Mat4& world, const std::string& 
     // where the winding swap below keeps the geometric normal on that same side.
     tm.normals.resize(d.normals.size());
     for (size_t i = 0; i < d.normals.size(); ++i) {
+      // Scaled by det(world): robust_length, since |nw|^2 leaves the float range for a node scale past ~1e9 or
+      // below ~1e-10, which once dropped the normals of a model scaled 1e10.
       const Vec3 nw = world.apply_normal(d.normals[i]);
-      const float len = length(nw);
-      if (!(len > 0) || !std::isfinite(len)) {
+      const float len = robust_length(nw);
+      if (!(len > 0)) {
         ctx_.warn_once("badnormal", node_at + ": zero-length vertex normals; flat shading used for that mesh");
         tm.normals.clear();
         break;
       }
-      tm.normals[i] = nw / len;
+      tm.normals[i] = robust_normalize(nw);
     }
     // Tangents are surface directions (plain linear map); the bitangent sign flips with the handedness.
     tm.tangents.resize(d.tangents.size());

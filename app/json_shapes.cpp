@@ -142,6 +142,9 @@ void JsonSceneBuilder::add_mesh_shape(const JsonNode& node) {
     mesh.normals = parse_points(*n);
     if (mesh.normals.size() != mesh.positions.size()) n->fail_expected("one normal per position");
     for (size_t i = 0; i < mesh.normals.size(); ++i) {
+      // Normalised first (robust: [1e-30, 0, 0] is a normal too), so that a transform's cofactors cannot
+      // overflow or underflow it.
+      mesh.normals[i] = robust_normalize(mesh.normals[i]);
       if (!(length(mesh.normals[i]) > 0)) n->elements()[i].fail("a normal must not be zero");
     }
   }
@@ -160,7 +163,7 @@ void JsonSceneBuilder::add_mesh_shape(const JsonNode& node) {
       for (size_t i = 0; i < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
   }
   drop_degenerate_triangles(node["indices"], mesh);
-  for (auto& n : mesh.normals) n = normalize(n);
+  for (auto& n : mesh.normals) n = robust_normalize(n);
   mesh.material = material_reference(node["material"]);
   MaterialEmission emission;
   if (auto e = node.find("emission")) emission.factor = parse_radiance(*e);

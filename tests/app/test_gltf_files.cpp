@@ -73,6 +73,22 @@ TEST_F(GltfFiles, MirroredNodeFlipsWindingNormalsStayOutward) {
   }
 }
 
+// A node scale far from 1 (1e10, 1e-11) scales the transformed normal by det = scale^3 ... its square leaves the
+// float range, yet the normals must come out unit and facing +z, not be dropped for flat shading.
+TEST_F(GltfFiles, NormalsSurviveExtremeNodeScales) {
+  Triangle t;
+  for (const char* scale : {"[1e10,1e10,1e10]", "[1e-11,1e-11,1e-11]", "[1e12,1e12,1]"}) {
+    SCOPED_TRACE(scale);
+    const GltfScene s =
+        load_gltf(simple("s.gltf", t.bin, t.views, t.accessors, Triangle::prim,
+                         std::string(R"({"mesh":0,"scale":)") + scale + "}"));
+    ASSERT_EQ(s.meshes.size(), 1u);
+    ASSERT_EQ(s.meshes[0].normals.size(), 3u);
+    for (const Vec3& n : s.meshes[0].normals) expect_vec(n, {0, 0, 1});
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  }
+}
+
 TEST_F(GltfFiles, StripsFansAndAttributeEncodings) {
   Bin bin;
   // Interleaved view: position (3 floats) + TEXCOORD_0 as normalized ushort (2) = 16-byte stride, 5 vertices in a

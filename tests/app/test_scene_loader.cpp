@@ -218,6 +218,26 @@ TEST_F(SceneLoader, NormalsStayPerpendicularUnderNonUniformScale) {
   }
 }
 
+// A normal of any finite non-zero length is a direction ([1e-30, 1e-30, 0] too), and a transform at the edge of the
+// coordinate range (scale 9e14: cofactors 8e29, squared past the float range) keeps smooth normals unit, not zero.
+TEST_F(SceneLoader, NormalsSurviveTinyLengthsAndExtremeScales) {
+  for (const char* scale : {"1", "9e14", "3e-12"}) {
+    SCOPED_TRACE(scale);
+    const auto scene = load_scene(write_scene(
+        std::string(R"({"materials": {"m": {"type": "diffuse"}}, "camera": {"from": [0,0,1], "to": [0,0,0]},
+          "shapes": [{"type": "mesh", "material": "m", "positions": [[0,0,0], [1,0,0], [0,1,0]],
+          "normals": [[1e-30,0,1e-30], [-1e30,0,1e30], [0,0,1]], "indices": [0,1,2],
+          "transform": {"scale": )") + scale + "}}]}"));
+    const TriangleMesh& m = scene->geometry.mesh(0);
+    const float h = std::sqrt(0.5f);
+    const Vec3 expected[3] = {{h, 0, h}, {-h, 0, h}, {0, 0, 1}};
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(m.normals[i].x, expected[i].x, 1e-6f) << i;
+      EXPECT_NEAR(m.normals[i].z, expected[i].z, 1e-6f) << i;
+    }
+  }
+}
+
 TEST_F(SceneLoader, EmissionMakesShapesLightsThatStayGeometry) {
   const auto scene = load_scene(write_scene(
       R"({"materials": {"m": {"type": "diffuse"}, "glow": {"type": "pbr", "emissive": [2, 2, 2]}},
