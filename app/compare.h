@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,8 +53,12 @@ struct VariantResult {
 
   double samples_per_second() const { return seconds > 0 ? samples / seconds : 0; }
   double rays_per_second() const { return seconds > 0 ? rays / seconds : 0; }
-  /// 1 / (relMSE x time): higher is better; equal-time and equal-spp runs rank variants the same way.
-  double efficiency() const { return rel_mse > 0 && seconds > 0 ? 1.0 / (rel_mse * seconds) : 0; }
+  /// 1 / (relMSE x time): higher is better; equal-time and equal-spp runs rank variants the same way. An exact
+  /// match (relMSE 0) is infinitely efficient and a non-finite relMSE gives NaN, not 0 (which would read "worst").
+  double efficiency() const {
+    if (!(seconds > 0)) return std::numeric_limits<double>::quiet_NaN();
+    return 1.0 / (rel_mse * seconds);
+  }
 };
 
 struct CompareReport {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "app/compare.h"
 #include "app/montage.h"
@@ -107,6 +108,22 @@ TEST(CompareReport, ErrorScaleIsTheWorstVariantsHighPercentile) {
   EXPECT_FLOAT_EQ(shared_error_scale({bad, good}), 0.002f * 996);
   EXPECT_EQ(shared_error_scale({std::vector<float>(10, 0.0f)}), 1e-6);  // no error at all: a scale above zero
   EXPECT_EQ(shared_error_scale({}), 1e-6);
+}
+
+// Efficiency 1 / (relMSE x time): an exact match (relMSE 0) is infinitely efficient and a non-finite relMSE has no
+// efficiency; neither may read 0, which ranks a variant worst.
+TEST(CompareReport, EfficiencyOfAnExactOrNonFiniteResultIsNotZero) {
+  VariantResult v;
+  v.seconds = 0.5;
+  v.rel_mse = 0.02;
+  EXPECT_DOUBLE_EQ(v.efficiency(), 100);
+  v.rel_mse = 0;
+  EXPECT_EQ(v.efficiency(), std::numeric_limits<double>::infinity());
+  v.rel_mse = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(v.efficiency()));
+  v.seconds = 0;
+  v.rel_mse = 0.02;
+  EXPECT_TRUE(std::isnan(v.efficiency()));
 }
 
 TEST(CompareReport, JsonMarkdownAndSelfContainedHtml) {
