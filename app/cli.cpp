@@ -192,7 +192,8 @@ void register_compare_command(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--crop", args->crop, "x,y,w,h: add a row of zoomed crops of this region to montage.png");
   cmd->add_flag("--convergence", args->convergence,
-                "Also render each variant at 1, 2, 4, ... spp up to its own and plot error against time (convergence.png)");
+                "Also render each variant at 1, 2, 4, ... spp up to its own and plot error against time "
+                "(convergence.png)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress on stderr and no table on stdout");
   add_render_overrides(*cmd, args->overrides);
   add_camera_option(*cmd, args->overrides);

@@ -140,8 +140,14 @@ int run_compare(const CompareArgs& args) {
     std::cerr << "lumis compare: " << scene_path << ": " << e.what() << "\n";
     return 1;
   }
-  for (const std::string& w : unused_overrides(args.overrides, names))
+  // A rendered reference is nee_mis with these options (and they are in its cache key): an option nee_mis reads is
+  // used then, whatever the variants.
+  std::vector<std::string> users = names;
+  if (args.reference.empty()) users.push_back("nee_mis");
+  for (const std::string& w : unused_overrides(args.overrides, users))
     std::cerr << "lumis compare: warning: " << w << "\n";
+  if (!args.reference.empty() && args.reference_spp)
+    std::cerr << "lumis compare: warning: --reference-spp only affects a rendered reference; ignored with --reference\n";
   const RenderSettings base = scene->settings;
   const bool equal_time = base.time_budget > 0;
   auto log = [&](const std::string& line) {

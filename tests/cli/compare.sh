@@ -87,12 +87,19 @@ grep -q '"source": "rendered"' "$D/report.json" || fail "reference reused after 
 
 # Equal time with a given reference file; an option that neither variant uses is named in a warning (also with -q).
 expect 0 "$LUMIS" compare "$SCENE" --width 32 --height 32 --max-depth 2 --time 0.05 --integrators bsdf,light \
-  --reference "$D/reference.exr" --mis-light-probability 0.3 --light-selection power -o "$T/time" -q
+  --reference "$D/reference.exr" --reference-spp 32 --mis-light-probability 0.3 --light-selection power -o "$T/time" -q
 grep -q '"mode": "equal-time"' "$T/time/report.json" || fail "equal-time mode"
 grep -q "\"source\": \"$D/reference.exr\"" "$T/time/report.json" || fail "given reference not recorded"
 grep -qF "warning: --mis-light-probability only affects --integrator mis; ignored for bsdf, light" "$T/err" ||
   fail "no warning for an option no variant uses: $(cat "$T/err")"
 grep -q "light-selection" "$T/err" && fail "a warning for an option the light variant uses: $(cat "$T/err")"
+grep -qF "warning: --reference-spp only affects a rendered reference; ignored with --reference" "$T/err" ||
+  fail "no warning for --reference-spp beside --reference: $(cat "$T/err")"
+# A rendered reference is nee_mis with --mis-heuristic and --light-selection (they are in its key): no warning that
+# they are ignored, though the one variant (bsdf) reads neither.
+expect 0 "$LUMIS" compare "$SCENE" "${SMALL[@]}" --spp 2 --integrators bsdf --mis-heuristic power \
+  --light-selection uniform -o "$T/bsdfref" -q
+grep -q "warning" "$T/err" && fail "a warning for options the rendered reference uses: $(cat "$T/err")"
 
 # Usage errors exit 2 and name the problem.
 expect 2 "$LUMIS" compare "$SCENE" --integrators mis,photon -o "$T/bad"
