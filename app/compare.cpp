@@ -260,6 +260,12 @@ int run_compare(const CompareArgs& args) {
       report.variants.push_back(std::move(v));
     }
     scene->settings = base;
+    // At equal time a fast variant can outrun the reference's 16 x spp: the reference's own noise then sets a floor
+    // under its relMSE (and efficiency falls with the budget). Said, not hidden; --reference-spp raises it.
+    for (const VariantResult& v : report.variants)
+      if (report.reference_spp > 0 && v.spp > report.reference_spp)
+        std::cerr << "lumis compare: warning: " << v.name << " rendered " << v.spp << " spp, more than the reference's "
+                  << report.reference_spp << ": its error is partly the reference's noise; raise --reference-spp\n";
 
     // Error pictures on one shared scale.
     std::vector<std::vector<float>> maps;

@@ -164,6 +164,9 @@ json.dump(s, open(sys.argv[3], "w"))
 ' "$SCENE" "$T/spp1.json" "$T/timed.json"
 expect 0 "$LUMIS" compare "$T/spp1.json" --width 8 --height 8 --max-depth 1 --time 0.25 --integrators bsdf,nee_mis \
   --reference-spp 16 -o "$T/et" -q
+grep -qF "warning: bsdf rendered" "$T/err" &&
+  grep -qF "more than the reference's 16: its error is partly the reference's noise; raise --reference-spp" "$T/err" ||
+  fail "no warning for variants with more samples than the reference: $(cat "$T/err")"
 expect 0 "$LUMIS" compare "$T/timed.json" --width 8 --height 8 --max-depth 1 --spp 2 --integrators bsdf \
   --reference-spp 4 -o "$T/timed" -q
 python3 -c '
