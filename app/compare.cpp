@@ -249,7 +249,7 @@ int run_compare(const CompareArgs& args) {
         // Doubling sample counts, ending at what the comparison used (in equal-time mode: what fitted in the
         // budget), also when that is not a power of two: 12 spp gives 1, 2, 4, 8, 12.
         const uint32_t last = std::max(1u, v.spp);
-        for (uint32_t n = 1;; n = n < last / 2 ? 2 * n : last) {
+        for (uint32_t n = 1;; n = 2 * uint64_t(n) < last ? 2 * n : last) {
           Rendered c = render_variant(*scene, s, n, 0);
           const DiffMetrics cm = compute_metrics(c.image, reference, dopt);
           v.convergence.push_back({n, c.stats.seconds, cm.mse, cm.rel_mse});

@@ -73,13 +73,13 @@ else
 fi
 # Unchanged settings reuse the cached reference; a changed setting renders a new one. A convergence series ends at
 # the variant's own spp also when that is not a power of two.
-expect 0 "$LUMIS" compare "$SCENE" "${SMALL[@]}" --spp 6 --integrators mis --convergence -o "$D" -q
+expect 0 "$LUMIS" compare "$SCENE" "${SMALL[@]}" --spp 5 --integrators mis --convergence -o "$D" -q
 grep -q '"source": "cached"' "$D/report.json" || fail "reference not reused"
-python3 - "$D/report.json" <<'PY' || fail "convergence series at 6 spp: $(cat "$D/report.json")"
+python3 - "$D/report.json" <<'PY' || fail "convergence series at 5 spp: $(cat "$D/report.json")"
 import json, sys
 v = json.load(open(sys.argv[1]))["variants"][0]
 c = v["convergence"]
-assert [p["spp"] for p in c] == [1, 2, 4, 6], c
+assert [p["spp"] for p in c] == [1, 2, 4, 5], c
 assert c[-1]["mse"] == v["mse"], (c[-1], v)
 PY
 expect 0 "$LUMIS" compare "$SCENE" "${SMALL[@]}" --spp 4 --integrators mis --seed 3 -o "$D" -q
