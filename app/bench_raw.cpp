@@ -16,6 +16,7 @@
 #include "core/frame.h"
 #include "core/rng.h"
 #include "core/warp.h"
+#include "integrators/path.h"
 
 namespace lumis {
 
@@ -147,13 +148,14 @@ RawBench::RawBench(const Scene& scene, int width, int height, int threads, size_
         const Vec3 wi = Frame::from_normal(ng).to_world(sample_cosine_hemisphere({r.next_float(), r.next_float()}));
         const Ray b = spawn_ray(hit, wi);
         if (is_finite(b.d) && length_squared(b.d) > 0) bounce_parts[c].push_back(b);
-        const LightSampleContext ctx{hit.p, ng};
+        const LightSampleContext ctx = light_context(hit);  // as the integrators sample lights
         const std::optional<LightChoice> choice = scene.light_selector.sample(ctx, r.next_float());
         if (!choice) continue;
         const std::optional<LightSample> ls =
             scene.lights[choice->index]->sample(ctx, {r.next_float(), r.next_float()});
         if (!ls || !(ls->pdf > 0) || dot(ls->wi, ng) <= 0) continue;
-        const Ray s = std::isinf(ls->dist) ? spawn_ray(hit, ls->wi) : spawn_ray_to(hit, ls->p_light);
+        const Ray s = std::isinf(ls->dist) ? spawn_ray(hit, ls->wi)
+                                           : spawn_ray_to(hit, ls->p_light, ls->n_light, ls->p_error);
         if (is_finite(s.o) && is_finite(s.d)) shadow_parts[c].push_back(s);
       }
     });

@@ -12,10 +12,6 @@ namespace lumis {
 
 namespace {
 
-// Bound of the rounding error of a sum of k products (Higham's gamma_k), with a safety factor for Embree's
-// own intersection arithmetic, which we do not control.
-constexpr float kErrorScale = 64 * 0x1p-24f;
-
 struct AlphaData {
   const TriangleMesh* mesh;
 };

@@ -20,7 +20,7 @@ float mis_weight(float pdf_a, float pdf_b, MisHeuristic heuristic) {
   return std::isfinite(w) ? w : 0.0f;
 }
 
-std::optional<Vertex> make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_dir) {
+std::optional<Vertex> make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_dir, const LightSampleContext* ctx) {
   if (hit.material < 0) return std::nullopt;
   ShadingPoint sp = scene.materials[hit.material]->shade(hit);
   Frame frame = sp.frame;
@@ -40,7 +40,7 @@ std::optional<Vertex> make_vertex(const Scene& scene, const Hit& hit, Vec3 ray_d
   }
   // Built in place (see LightSample in lights/light.h): copied from a temporary, store-forwarding stalls were 65 %
   // of this function's time.
-  return std::make_optional<Vertex>(scene, hit, frame, ng, sp.bsdf, wo, LightSampleContext{hit.p, ng});
+  return std::make_optional<Vertex>(scene, hit, frame, ng, sp.bsdf, wo, ctx ? *ctx : light_context(hit));
 }
 
 void draw_lights(const Scene& scene, const Hit* hits, const int* lanes, int m, const VertexDims* dims,
@@ -57,7 +57,7 @@ void draw_lights(const Scene& scene, const Hit* hits, const int* lanes, int m, c
   float u_choice[kLanes];
   for (int i = 0; i < m; ++i) {
     const Hit& hit = hits[lanes[i]];
-    ctx[i] = {hit.p, facing_ng(hit)};
+    ctx[i] = light_context(hit);
     u_choice[i] = dims[lanes[i]].choice;
   }
   scene.light_selector.sample_many(ctx.data(), u_choice, m, choice.data());
@@ -68,6 +68,7 @@ void draw_lights(const Scene& scene, const Hit* hits, const int* lanes, int m, c
   if (n_lights > kLanes) {  // many lights: one receiver at a time
     for (int i = 0; i < m; ++i) {
       LightDraw& d = out[lanes[i]];
+      d.ctx = ctx[i];
       d.choice = choice[i];
       const std::optional<LightSample> ls =
           choice[i].index >= 0 ? scene.lights[choice[i].index]->sample(ctx[i], dims[lanes[i]].light) : std::nullopt;
@@ -94,6 +95,7 @@ void draw_lights(const Scene& scene, const Hit* hits, const int* lanes, int m, c
       if (choice[i].index >= 0) order[next[choice[i].index]++] = i;
   }
   for (int i = 0; i < m; ++i) {
+    out[lanes[i]].ctx = ctx[i];
     out[lanes[i]].choice = choice[i];
     out[lanes[i]].ok = false;
   }
@@ -130,7 +132,9 @@ std::optional<ShadowQuery> sample_direct(const Vertex& v, const LightDraw& draw,
   const float pdf_light = draw.choice.pmf * ls.pdf;
   const float w = mis_weighted ? mis_weight(pdf_light, e.pdf, heuristic) : 1.0f;
   return std::make_optional<ShadowQuery>(
-      std::isinf(ls.dist) ? spawn_ray(v.hit, ls.wi) : spawn_ray_to(v.hit, ls.p_light),
+      // From v.ctx.p: spawn_ray's origin toward wi, which is on the facing side (light_context), computed once.
+      std::isinf(ls.dist) ? Ray{v.ctx.p, ls.wi, 0, INFINITY}
+                          : shadow_ray(v.ctx.p, ls.p_light, ls.n_light, ls.p_error),
       e.f * ls.le * (std::abs(wi.z) * w / pdf_light));
 }
 

@@ -36,7 +36,7 @@ class EnvironmentBase : public Light {
     return make_sample(ctx, wi, pdf, le_escaped(wi));
   }
   std::optional<LightSample> make_sample(const LightSampleContext& ctx, Vec3 wi, float pdf, Color le) const {
-    return std::make_optional<LightSample>(le, wi, INFINITY, pdf, ctx.p + wi * (2 * scene_radius_), -wi);
+    return std::make_optional<LightSample>(le, wi, INFINITY, pdf, ctx.p + wi * (2 * scene_radius_), -wi, 0.0f);
   }
   float scene_radius_ = 1;
 };

@@ -47,15 +47,16 @@ inline float sphere_importance(const SphereEmitter& s, const LightSampleContext&
 // every such read waits on a failed store forward (docs/performance.md, "Store forwarding").
 struct LightSample {
   LightSample() = default;
-  /// le, wi, dist, pdf, p_light, n_light (the members themselves are ordered by slot).
-  LightSample(Color le_, Vec3 wi_, float dist_, float pdf_, Vec3 p_light_, Vec3 n_light_)
-      : wi(wi_), dist(dist_), p_light(p_light_), pdf(pdf_), n_light(n_light_), le(le_) {}
+  /// le, wi, dist, pdf, p_light, n_light, p_error (the members themselves are ordered by slot).
+  LightSample(Color le_, Vec3 wi_, float dist_, float pdf_, Vec3 p_light_, Vec3 n_light_, float p_error_)
+      : wi(wi_), dist(dist_), p_light(p_light_), pdf(pdf_), n_light(n_light_), p_error(p_error_), le(le_) {}
   // In 16-byte slots (a Vec3 and a float each), like Ray in core/geometry.h.
   Vec3 wi;           ///< unit world direction from the receiver toward the light
   float dist = 0;    ///< distance to the sampled light point (INFINITY for the environment)
   Vec3 p_light;      ///< sampled point on the light (unused for the environment)
   float pdf = 0;     ///< solid-angle density of wi at the receiver
   Vec3 n_light;      ///< light surface normal at p_light
+  float p_error = 0; ///< rounding-error bound of p_light, per axis (world units; 0 for the environment)
   alignas(16) Color le;  ///< radiance arriving at the receiver along -wi (before visibility)
 };
 

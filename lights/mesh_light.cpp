@@ -188,7 +188,10 @@ class MeshLight final : public Light {
     if (mask_ && alpha_at(*mask_, static_cast<unsigned>(t), bary.y, bary.z) < mask_->alpha->cutoff)
       return std::nullopt;
     pdf *= triangles_.pmf(t);
-    return std::make_optional<LightSample>(radiance_at(t, bary), wi, dist, pdf, p_light, n);
+    // Either way p_light is computed from the receiver and the triangle's corners.
+    const float extent = max_component(max(abs(a), max(abs(b), abs(c))));
+    const float err = (max_component(abs(ctx.p)) + dist + 3 * extent) * kErrorScale;
+    return std::make_optional<LightSample>(radiance_at(t, bary), wi, dist, pdf, p_light, n, err);
   }
   Vec3 vertex(size_t t, int k) const { return positions_[indices_[3 * t + k]]; }
   bool emits_toward(size_t t, Vec3 p) const {

@@ -20,6 +20,7 @@ class QuadLight final : public Light {
     // rounding; anything further off is a parallelogram and is sampled by area.
     const float lu = length(eu), lv = length(ev);
     is_rectangle_ = lu > 0 && lv > 0 && std::abs(dot(eu, ev)) <= 1e-5f * lu * lv;
+    extent_ = max_component(abs(origin)) + max_component(abs(eu)) + max_component(abs(ev));
   }
 
   /// Solid angle at ctx.p; nullopt when the receiver is behind or in the plane (nothing is emitted toward it).
@@ -49,7 +50,9 @@ class QuadLight final : public Light {
       if (!(cos_l > 0)) return std::nullopt;
       pdf = dist2 / (cos_l * area_);
     }
-    return std::make_optional<LightSample>(radiance_, wi, dist, pdf, p_light, n_);
+    // Either way p_light is computed from the receiver, the corner and the edges.
+    const float err = (max_component(abs(ctx.p)) + dist + extent_) * kErrorScale;
+    return std::make_optional<LightSample>(radiance_, wi, dist, pdf, p_light, n_, err);
   }
 
   /// Solid angle at ctx.p, as sample() would produce wi; only on_light.p is used (never prim_id).
@@ -91,6 +94,7 @@ class QuadLight final : public Light {
 
   Vec3 o_, eu_, ev_, n_;
   float area_ = 0;
+  float extent_ = 0;  ///< |origin| + |edge_u| + |edge_v| (max norms): the scale of a sampled point's rounding
   bool is_rectangle_ = false;
   Color radiance_;
   QuadSampling method_;

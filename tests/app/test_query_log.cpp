@@ -155,7 +155,7 @@ TEST(Replay, TracesWhatWasLogged) {
     ++hits_expected;
     // Through the sphere light's centre (a light query meets it) and toward the floor behind the copper sphere.
     const Vec3 target = i % 2 ? Vec3{0, 1.7f, 0} : Vec3{0.1f * float(i) - 0.8f, 0.01f, -0.9f};
-    shadow[i] = spawn_ray_to(hits[i], target);
+    shadow[i] = spawn_ray_to(hits[i], target, {}, 0);  // a point in free space: no offset
   }
   bool occ[16];
   scene->geometry.occluded16(shadow, 16, occ);

@@ -30,6 +30,7 @@ void expect_draws_match(Scene& scene, const std::string& name, bool expect_none)
     hits[k].p = {4 * rng.next_float() - 2, 3 * rng.next_float() - 0.5f, 4 * rng.next_float() - 2};
     hits[k].ng = normalize(Vec3{rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f});
     hits[k].front = rng.next_float() < 0.5f;
+    hits[k].p_error = Vec3(1e-3f * rng.next_float());  // light_context offsets the receiver off the surface
     dims[k] = {rng.next_float(), {rng.next_float(), rng.next_float()}, 0, {0, 0}, 0};
   }
   // Every third lane left out, the rest listed backwards.
@@ -41,8 +42,9 @@ void expect_draws_match(Scene& scene, const std::string& name, bool expect_none)
   int drawn = 0, none = 0;
   for (const int k : lanes) {
     const std::string at = name + " lane " + std::to_string(k);
-    const LightSampleContext ctx{hits[k].p, hits[k].front ? hits[k].ng : -hits[k].ng};
+    const LightSampleContext ctx = light_context(hits[k]);
     const LightChoice c = scene.light_selector.sample(ctx, dims[k].choice).value_or(LightChoice{});
+    ASSERT_TRUE(same(out[k].ctx.p, ctx.p) && same(out[k].ctx.n, ctx.n)) << at;  // make_vertex's receiver
     ASSERT_EQ(out[k].choice.index, c.index) << at;
     ASSERT_TRUE(same(out[k].choice.pmf, c.pmf)) << at;
     if (c.index < 0) {
@@ -55,7 +57,7 @@ void expect_draws_match(Scene& scene, const std::string& name, bool expect_none)
     ++drawn;
     const LightSample& d = out[k].sample;
     ASSERT_TRUE(same(d.wi, ls->wi) && same(d.dist, ls->dist) && same(d.pdf, ls->pdf) && same(d.p_light, ls->p_light) &&
-                same(d.n_light, ls->n_light) && same(d.le, ls->le))
+                same(d.n_light, ls->n_light) && same(d.p_error, ls->p_error) && same(d.le, ls->le))
         << at;
   }
   EXPECT_GT(drawn, 60) << name;  // of 171 receivers, about half face a light

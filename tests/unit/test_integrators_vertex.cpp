@@ -90,7 +90,7 @@ LightDraw light_from(Vec3 wi) {
   LightDraw d;
   d.choice = {0, 1.0f};
   d.ok = true;
-  d.sample = LightSample(Color(1), wi, 1.0f, 1.0f, wi, -wi);
+  d.sample = LightSample(Color(1), wi, 1.0f, 1.0f, wi, -wi, 0.0f);
   return d;
 }
 

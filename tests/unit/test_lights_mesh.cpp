@@ -308,7 +308,7 @@ TEST(MeshLight, SampleManyEqualsSample) {
           ++compared;
           ASSERT_TRUE(same(ls->wi, out[k].wi) && same(ls->dist, out[k].dist) && same(ls->pdf, out[k].pdf) &&
                       same(ls->p_light, out[k].p_light) && same(ls->n_light, out[k].n_light) &&
-                      same(ls->le, out[k].le))
+                      same(ls->p_error, out[k].p_error) && same(ls->le, out[k].le))
               << "lane " << k << (two_sided ? " two-sided" : " one-sided") << (textured ? " textured" : "");
         }
       }

@@ -91,7 +91,8 @@ TEST(SphereLightBatch, SampleManyEqualsSample) {
       if (!ls) continue;
       (length_squared(kCenter - ctx[k].p) <= radius * radius ? inside : outside) += 1;
       ASSERT_TRUE(same(ls->wi, out[k].wi) && same(ls->dist, out[k].dist) && same(ls->pdf, out[k].pdf) &&
-                  same(ls->p_light, out[k].p_light) && same(ls->n_light, out[k].n_light) && same(ls->le, out[k].le))
+                  same(ls->p_light, out[k].p_light) && same(ls->n_light, out[k].n_light) &&
+                  same(ls->p_error, out[k].p_error) && same(ls->le, out[k].le))
           << "lane " << k;
     }
     if (radius > 0) {  // the receivers reach both branches
