@@ -90,7 +90,7 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
   cmd.add_option("--uniform-measure", o.uniform_measure, "theta-phi | solid-angle (for --integrator uniform)");
   cmd.add_option("--time", o.time, "Stop after this many seconds (writes what was rendered; 0 = no time budget)")
       ->check(kFiniteNumber)
-      ->check(CLI::Range(0.0f, 1e7f));
+      ->check(CLI::Range(0.0, 1e7));
   cmd.add_option("--exposure", o.exposure, "Exposure in stops for PNG/JPG output")
       ->check(kFiniteNumber)
       ->check(CLI::Range(-64.0f, 64.0f));

@@ -55,7 +55,7 @@ Rendered render_variant(Scene& scene, const RenderSettings& settings, uint32_t s
   Film film(settings.width, settings.height);
   RenderOptions ro;
   // Equal time: ask for far more samples than fit and let the budget stop the render at a pass boundary.
-  ro.spp = time_budget > 0 ? (1u << 20) : spp;
+  ro.spp = time_budget > 0 ? kTimedRenderSpp : spp;
   ro.time_budget = time_budget;
   ro.threads = settings.threads;
   Rendered r;
@@ -260,12 +260,18 @@ int run_compare(const CompareArgs& args) {
       report.variants.push_back(std::move(v));
     }
     scene->settings = base;
-    // At equal time a fast variant can outrun the reference's 16 x spp: the reference's own noise then sets a floor
-    // under its relMSE (and efficiency falls with the budget). Said, not hidden; --reference-spp raises it.
-    for (const VariantResult& v : report.variants)
+    // Said, not hidden: a variant that took kTimedRenderSpp before the budget ran out (it did not get equal time), and
+    // at equal time a fast variant that outran the reference's 16 x spp: the reference's own noise then sets a floor
+    // under its relMSE (and efficiency falls with the budget); --reference-spp raises it.
+    for (const VariantResult& v : report.variants) {
+      if (equal_time && v.spp >= kTimedRenderSpp)
+        std::cerr << "lumis compare: warning: " << v.name << " reached " << kTimedRenderSpp
+                  << " spp, the most a timed render takes, in " << v.seconds << " s of the "
+                  << base.time_budget << " s budget: not equal time; use --spp, or a larger image\n";
       if (report.reference_spp > 0 && v.spp > report.reference_spp)
         std::cerr << "lumis compare: warning: " << v.name << " rendered " << v.spp << " spp, more than the reference's "
                   << report.reference_spp << ": its error is partly the reference's noise; raise --reference-spp\n";
+    }
 
     // Error pictures on one shared scale.
     std::vector<std::vector<float>> maps;

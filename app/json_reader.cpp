@@ -236,12 +236,23 @@ float JsonNode::as_float(float lo, float hi) const {
   const double v = value_->get<double>();
   // The parser already rejects overflowing literals; a double beyond float range would become infinite here.
   if (!std::isfinite(v) || std::abs(v) > FLT_MAX) fail_expected("a finite number within float range");
-  if (v < lo || v > hi) {
-    if (hi == INFINITY) fail_expected("a number >= " + format_number(lo));
-    if (lo == -INFINITY) fail_expected("a number <= " + format_number(hi));
-    fail_expected("a number in [" + format_number(lo) + ", " + format_number(hi) + "]");
-  }
+  expect_in_range(v, lo, hi);
   return static_cast<float>(v);
+}
+
+double JsonNode::as_double(double lo, double hi) const {
+  if (!value_->is_number()) fail_expected("a number");
+  const double v = value_->get<double>();
+  if (!std::isfinite(v)) fail_expected("a finite number");
+  expect_in_range(v, lo, hi);
+  return v;
+}
+
+void JsonNode::expect_in_range(double v, double lo, double hi) const {
+  if (v >= lo && v <= hi) return;
+  if (hi == INFINITY) fail_expected("a number >= " + format_number(lo));
+  if (lo == -INFINITY) fail_expected("a number <= " + format_number(hi));
+  fail_expected("a number in [" + format_number(lo) + ", " + format_number(hi) + "]");
 }
 
 int64_t JsonNode::as_integer(int64_t lo, int64_t hi) const {

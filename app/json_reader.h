@@ -43,6 +43,8 @@ class JsonNode {
   [[noreturn]] void fail(const std::string& detail) const;
   /// Throw "expected <what>, found <description of this value>".
   [[noreturn]] void fail_expected(const std::string& what) const;
+  /// fail_expected with the range's wording unless lo <= v <= hi (an infinite bound is left out).
+  void expect_in_range(double v, double lo, double hi) const;
 
   /// Require an object whose keys all lie in `allowed` (an unknown key is an error at its own pointer).
   void expect_object(std::initializer_list<std::string_view> allowed) const;
@@ -58,6 +60,8 @@ class JsonNode {
 
   /// Finite number (as float). The range is inclusive; messages quote it.
   float as_float(float lo = -INFINITY, float hi = INFINITY) const;
+  /// Finite number kept in double (a duration: 0.05 as a float is 0.0500000007). The range is inclusive.
+  double as_double(double lo, double hi) const;
   /// Integer in [lo, hi] (a number with a fractional part is an error).
   int64_t as_integer(int64_t lo, int64_t hi) const;
   bool as_bool() const;

@@ -153,7 +153,7 @@ int run_render(const RenderArgs& args) {
   }
   Film film(s.width, s.height, film_options);
   RenderOptions ro;
-  ro.spp = s.time_budget > 0 && !args.overrides.spp ? (1u << 20) : s.spp;
+  ro.spp = s.time_budget > 0 && !args.overrides.spp ? kTimedRenderSpp : s.spp;
   ro.time_budget = s.time_budget;
   ro.threads = s.threads;
   ro.cancel = &g_interrupted;
@@ -194,6 +194,9 @@ int run_render(const RenderArgs& args) {
   // Only now: a second signal during the write would otherwise leave a temporary file behind.
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
+  if (ro.spp == kTimedRenderSpp && st.spp >= kTimedRenderSpp)  // a warning: shown also with -q
+    std::fprintf(stderr, "lumis: warning: stopped at %u spp, the most a timed render takes, after %.3g s of the %g s "
+                 "budget\n", kTimedRenderSpp, st.seconds, s.time_budget);
   if (!args.quiet) {
     std::fprintf(stderr, "%s: %dx%d, %s, %u spp in %.2f s, %s samples/s, %s rays/s%s -> %s\n", scene_path.c_str(),
                  s.width, s.height, integrator->name(), st.spp, st.seconds,

@@ -20,7 +20,8 @@ struct RenderOverrides {
   std::optional<uint32_t> spp, seed;
   std::optional<int> max_depth, rr_depth, width, height, threads;
   std::optional<std::string> integrator, sampler, light_selection, mis_heuristic, uniform_measure;
-  std::optional<float> time, exposure, mis_light_probability;
+  std::optional<double> time;  ///< seconds, kept in double: 0.05 stays 0.05 in the compare report
+  std::optional<float> exposure, mis_light_probability;
   std::string camera;  ///< a glTF file's camera (SceneLoadOptions::camera), from --camera; empty: default
 };
 

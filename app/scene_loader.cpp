@@ -129,7 +129,7 @@ void parse_render(const JsonNode& node, RenderSettings& s) {
     // Light sampling alone never draws the directions no light covers: the image would lose indirect light.
     if (!(s.mis_light_probability < 1)) v->fail("expected a probability in [0, 1) (1 would lose indirect light)");
   }
-  if (auto v = node.find("time")) s.time_budget = v->as_float(0);
+  if (auto v = node.find("time")) s.time_budget = v->as_double(0, 1e7);
   if (auto v = node.find("exposure")) s.exposure = v->as_float(-64, 64);
 }
 

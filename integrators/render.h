@@ -21,6 +21,10 @@ struct RenderProgress {
   double elapsed = 0;                            ///< seconds
 };
 
+/// The samples per pixel a render under a time budget asks for (`--time`, `compare` at equal time): the budget, not
+/// the count, is meant to end it; a render that reaches the count first (a tiny image, a long budget) says so.
+inline constexpr uint32_t kTimedRenderSpp = 1u << 20;
+
 struct RenderOptions {
   uint32_t spp = 16;
   double time_budget = 0;                 ///< seconds; 0 = render all spp

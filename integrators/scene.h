@@ -30,7 +30,7 @@ struct RenderSettings {
   UniformMeasure uniform_measure = UniformMeasure::ThetaPhi;
   float mis_light_probability = 0.5f;  ///< `mis`: probability of the light strategy at a vertex (c_l)
   int width = 512, height = 512;
-  float time_budget = 0;     ///< seconds; 0 = none
+  double time_budget = 0;    ///< seconds; 0 = none
   int threads = 0;           ///< 0 = all cores
   bool aov_albedo = false, aov_normal = false, aov_depth = false, aov_variance = true;
   float exposure = 0;

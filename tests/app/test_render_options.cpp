@@ -44,7 +44,7 @@ TEST(RenderOptions, EachOverrideReplacesItsSettingAndNoOther) {
   o.max_depth = 2;
   o.rr_depth = 0;  // 0 (off) is a value, not "not given"
   o.threads = 3;
-  o.time = 1.5f;
+  o.time = 0.05;
   o.exposure = -2;
   o.mis_light_probability = 0.25f;
   o.integrator = "uniform";
@@ -59,7 +59,7 @@ TEST(RenderOptions, EachOverrideReplacesItsSettingAndNoOther) {
   EXPECT_EQ(s.max_depth, 2);
   EXPECT_EQ(s.rr_depth, 0);
   EXPECT_EQ(s.threads, 3);
-  EXPECT_EQ(s.time_budget, 1.5f);
+  EXPECT_EQ(s.time_budget, 0.05);  // exactly: a float would make it 0.0500000007 in compare's report
   EXPECT_EQ(s.exposure, -2.0f);
   EXPECT_EQ(s.mis_light_probability, 0.25f);
   EXPECT_EQ(s.integrator, "uniform");

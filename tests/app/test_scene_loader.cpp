@@ -149,7 +149,7 @@ TEST_F(SceneLoader, RenderKeysAreRead) {
   const auto scene = load_scene(write_scene(scene_with(
       R"("render": {"integrator": "mis", "spp": 16, "max_depth": 3, "rr_depth": 0, "sampler": "sobol", "seed": 7,
                     "light_selection": "power", "mis_heuristic": "power", "uniform_measure": "solid_angle",
-                    "mis_light_probability": 0.25, "time": 2.5, "exposure": -1}, "film": {"width": 64, "height": 32})")));
+                    "mis_light_probability": 0.25, "time": 0.05, "exposure": -1}, "film": {"width": 64, "height": 32})")));
   const RenderSettings& s = scene->settings;
   EXPECT_EQ(s.integrator, "mis");
   EXPECT_EQ(s.spp, 16u);
@@ -161,7 +161,7 @@ TEST_F(SceneLoader, RenderKeysAreRead) {
   EXPECT_EQ(s.mis_heuristic, MisHeuristic::Power);
   EXPECT_EQ(s.uniform_measure, UniformMeasure::SolidAngle);
   EXPECT_FLOAT_EQ(s.mis_light_probability, 0.25f);
-  EXPECT_FLOAT_EQ(s.time_budget, 2.5f);
+  EXPECT_EQ(s.time_budget, 0.05);  // exactly: read as a double, not rounded to float (0.0500000007)
   EXPECT_FLOAT_EQ(s.exposure, -1);
   EXPECT_EQ(s.width, 64);
   EXPECT_EQ(s.height, 32);

@@ -89,6 +89,7 @@ grep -q '"source": "rendered"' "$D/report.json" || fail "reference reused after 
 expect 0 "$LUMIS" compare "$SCENE" --width 32 --height 32 --max-depth 2 --time 0.05 --integrators bsdf,light \
   --reference "$D/reference.exr" --reference-spp 32 --mis-light-probability 0.3 --light-selection power -o "$T/time" -q
 grep -q '"mode": "equal-time"' "$T/time/report.json" || fail "equal-time mode"
+grep -q '"time_budget": 0.05,' "$T/time/report.json" || fail "time budget not 0.05: $(grep time_budget "$T/time/report.json")"
 grep -q "\"source\": \"$D/reference.exr\"" "$T/time/report.json" || fail "given reference not recorded"
 grep -qF "warning: --mis-light-probability only affects --integrator mis; ignored for bsdf, light" "$T/err" ||
   fail "no warning for an option no variant uses: $(cat "$T/err")"
@@ -167,6 +168,21 @@ expect 0 "$LUMIS" compare "$T/spp1.json" --width 8 --height 8 --max-depth 1 --ti
 grep -qF "warning: bsdf rendered" "$T/err" &&
   grep -qF "more than the reference's 16: its error is partly the reference's noise; raise --reference-spp" "$T/err" ||
   fail "no warning for variants with more samples than the reference: $(cat "$T/err")"
+# A variant that takes the most samples a timed render asks for before its time is up did not get equal time: said.
+# One pixel whose camera ray misses everything: 2^20 samples in about 2 s, against a budget of 60.
+cat > "$T/miss.json" <<'EOF2'
+{"version": 1, "camera": {"type": "perspective", "from": [0, 0, 0], "to": [0, 0, -1], "fov": 1},
+ "materials": {"grey": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+ "shapes": [{"type": "quad", "origin": [-1, -1, 5], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], "material": "grey"}]}
+EOF2
+expect 0 "$LUMIS" compare "$T/miss.json" --width 1 --height 1 --time 60 --integrators bsdf --reference-spp 1 \
+  -o "$T/cap" -q
+grep -qF "warning: bsdf reached 1048576 spp, the most a timed render takes, in " "$T/err" &&
+  grep -qF "s of the 60 s budget: not equal time" "$T/err" || fail "no warning at the timed spp cap: $(cat "$T/err")"
+# lumis render says the same (here, rather than in outputs.sh, which also runs under AddressSanitizer).
+expect 0 "$LUMIS" render "$T/miss.json" --width 1 --height 1 --time 60 -q -o "$T/cap.exr"
+grep -qF "warning: stopped at 1048576 spp, the most a timed render takes, after " "$T/err" ||
+  fail "render: no warning at the timed spp cap: $(cat "$T/err")"
 expect 0 "$LUMIS" compare "$T/timed.json" --width 8 --height 8 --max-depth 1 --spp 2 --integrators bsdf \
   --reference-spp 4 -o "$T/timed" -q
 python3 -c '
