@@ -1,7 +1,11 @@
 // `lumis compare [SCENE]`: the pipeline behind compare.h. Exit codes: 0 done, 1 scene or I/O error, 2 usage error.
 #include "app/compare.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -94,6 +98,15 @@ std::string output_folder_problem(const fs::path& dir) {
   return "";
 }
 
+// The files a run writes in its output folder (a given reference must not be one of them).
+std::vector<std::string> output_file_names(const std::vector<std::string>& variants) {
+  std::vector<std::string> out = {"reference.png", "montage.png", "convergence.png", "report.json", "report.md",
+                                  "index.html"};
+  for (const std::string& v : variants)
+    for (const std::string& f : {v + ".exr", v + ".png", "error-" + v + ".png"}) out.push_back(f);
+  return out;
+}
+
 // A given reference: readable, the render's size, with R, G, B (a UsageError or DiffError otherwise).
 Image read_reference(const std::string& path, const RenderSettings& s, const std::string& scene_path) {
   Image reference = read_image(path, true);
@@ -122,6 +135,12 @@ int run_compare(const CompareArgs& args) {
     if (const std::string problem = output_folder_problem(dir); !problem.empty())
       throw UsageError("compare: -o " + dir.string() + ": " + problem + " (give a folder for the outputs)");
     names = parse_integrator_list(args.integrators);
+    std::error_code ec;
+    if (!args.reference.empty())
+      for (const std::string& f : output_file_names(names))
+        if (fs::equivalent(dir / f, args.reference, ec))
+          throw UsageError("compare: --reference " + args.reference + " is the " + f + " this run writes in " +
+                           dir.string() + "; copy it elsewhere or give another -o");
     scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera});
     apply_overrides(args.overrides, *scene);
     if (args.overrides.spp) scene->settings.time_budget = 0;  // --spp asks for equal samples, over the scene's time
@@ -173,6 +192,12 @@ int run_compare(const CompareArgs& args) {
     if (!args.reference.empty()) reference = read_reference(args.reference, base, scene_path);
     created = !fs::exists(dir);
     fs::create_directories(dir);
+    // Before any rendering: a folder that cannot be written in fails now, not after the reference.
+    if (::access(dir.c_str(), W_OK) != 0)
+      throw std::runtime_error(dir.string() + ": cannot write in this folder (" + std::strerror(errno) + ")");
+    // A report from an earlier run would describe images this run replaces: removed first, so that a run that
+    // fails part way leaves no report (the cached reference stays).
+    for (const char* f : {"report.json", "report.md", "index.html"}) fs::remove(dir / f);
     if (!args.reference.empty()) {
       report.reference_source = args.reference;
     } else {

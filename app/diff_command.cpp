@@ -3,6 +3,7 @@
 // incomparable images).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -62,6 +63,13 @@ int run_diff(const DiffArgs& args) {
       std::cerr << "lumis diff: " << args.heatmap << ": " << problem << "\n";
       return 2;
     }
+    std::error_code ec;
+    for (const std::string& input : {args.a, args.b})
+      if (std::filesystem::equivalent(args.heatmap, input, ec)) {
+        std::cerr << "lumis diff: --heatmap " << args.heatmap << " is the input image " << input
+                  << "; give another file name\n";
+        return 2;
+      }
   }
   Image a, b;
   DiffMetrics m;

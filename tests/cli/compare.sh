@@ -220,4 +220,26 @@ grep -q '"source": "rendered"' "$T/cams/report.json" || fail "reference reused f
 expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera 1
 grep -q '"source": "cached"' "$T/cams/report.json" || fail "reference not reused for the same camera"
 
+# A run that fails part way leaves no report of the earlier run beside images it replaced: the report goes first.
+SMALL8=(--width 8 --height 8 --spp 1 --reference-spp 4 --integrators bsdf,nee_mis -q)
+expect 0 "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/rerun"
+rm "$T/rerun/nee_mis.exr" && mkdir "$T/rerun/nee_mis.exr"   # nee_mis's image cannot be written now
+expect 1 "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/rerun"
+for f in report.json report.md index.html; do [ ! -e "$T/rerun/$f" ] || fail "a failed rerun left the old $f"; done
+[ -s "$T/rerun/reference.exr" ] || fail "a failed rerun removed the cached reference"
+
+# A given reference that this run would overwrite (bsdf's image in the output folder) is refused before any work.
+cp "$T/rerun/bsdf.exr" "$T/bsdf-before.exr"
+expect 2 "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/rerun" --reference "$T/rerun/bsdf.exr"
+grep -qF "is the bsdf.exr this run writes in $T/rerun" "$T/err" || fail "reference in -o: $(cat "$T/err")"
+cmp -s "$T/bsdf-before.exr" "$T/rerun/bsdf.exr" || fail "the given reference was overwritten"
+
+# An output folder that cannot be written in fails before the reference is rendered (not as root, who can write).
+mkdir "$T/readonly" && chmod a-w "$T/readonly"
+if ! touch "$T/readonly/probe" 2>/dev/null; then
+  expect 1 "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/readonly" --reference-spp 1000000
+  grep -qF "$T/readonly: cannot write in this folder" "$T/err" || fail "read-only -o: $(cat "$T/err")"
+fi
+chmod u+w "$T/readonly"
+
 echo "compare.sh: all checks passed"

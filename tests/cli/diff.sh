@@ -30,6 +30,11 @@ for key in '"mse"' '"rmse"' '"relmse"' '"mae"' '"psnr"' '"maxabs"' '"over"' '"pa
   grep -q "$key" "$T/out" || fail "--json lacks $key: $(cat "$T/out")"
 done
 [ -s "$T/heat.png" ] || fail "no heatmap written"
+# A heatmap named like an input (here by another path to it) would overwrite that image: refused, the image kept.
+cp "$T/b.exr" "$T/b-copy.exr"
+expect 2 "$LUMIS" diff "$T/a.exr" "$T/b-copy.exr" --heatmap "$T/../$(basename "$T")/b-copy.exr"
+grep -q "is the input image $T/b-copy.exr; give another file name" "$T/err" || fail "heatmap over an input: $(cat "$T/err")"
+cmp -s "$T/b.exr" "$T/b-copy.exr" || fail "the heatmap overwrote an input image"
 
 # Direct lighting only against full paths is biased: the z-test rejects it, with a useful summary.
 expect 1 "$LUMIS" diff "$T/direct.exr" "$T/a.exr" --z-test
