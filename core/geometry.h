@@ -152,13 +152,14 @@ inline Ray spawn_ray(const Hit& from, Vec3 w) {
 /// spawn_ray_to from an origin already offset off its surface (offset_ray_origin's result toward the target).
 inline Ray shadow_ray(Vec3 o, Vec3 target, Vec3 target_n, float target_error) {
   const Vec3 t = offset_ray_origin(target, Vec3(target_error), target_n, o - target);
-  return {o, t - o, 0, 1 - 1e-4f};
+  return {o, t - o, 0, 1};
 }
 /// Shadow ray from surface point `from` to a world point on a light with surface normal target_n and error bound
 /// target_error (per axis): both ends are offset off their surfaces toward each other by their error bounds
-/// (pbrt-v4's SpawnRayTo), and the segment stops 1e-4 of its length short of the offset target (pbrt-v4's
-/// ShadowEpsilon). Without the target's offset, a light point rounded into its own surface (far from the origin,
-/// where floats are coarse) was shadowed by the light itself.
+/// (pbrt-v4's SpawnRayTo), and the segment ends at the offset target. Without the target's offset, a light point
+/// rounded into its own surface (far from the origin, where floats are coarse) was shadowed by the light itself;
+/// with it, no further margin is needed: the segment used to stop 1e-4 of its length short (pbrt-v4's
+/// ShadowEpsilon), which hid an occluder that close to a light (a ceiling 1e-4 below a light 2 units away).
 inline Ray spawn_ray_to(const Hit& from, Vec3 target, Vec3 target_n, float target_error) {
   return shadow_ray(offset_ray_origin(from.p, from.p_error, from.ng, target - from.p), target, target_n, target_error);
 }

@@ -6,6 +6,8 @@
 //    1e4, 919 (sphere), 355 (tilted quad) and 1096 (tilted mesh square) were blocked, about half at 1e5, and
 //    `light` / `nee_mis` rendered a sphere light over a floor 13 % too dark. Now the target is offset off the
 //    light by its error bound: none is blocked.
+//  - The shadow segment ends at that offset target: the 1e-4 margin no longer hides an occluder just in front of
+//    the light (a ceiling 1e-4 below a light).
 //  - A light-sampled direction meets the light from the point the ray along it starts from. `mis` traces its
 //    light-sampled directions; they were drawn from the hit point, while the ray leaves from the offset origin
 //    (4e-3 above a 2000-unit ground): under a 0.03-radius sphere light 1.5 units up, 228 of 4000 missed it, and
@@ -91,6 +93,56 @@ TEST(RayOrigins, ShadowRaysReachSampledLightPointsFarFromTheOrigin) {
       EXPECT_EQ(blocked, 0) << what << ": of " << traced << " shadow rays, " << blocked
                             << " were blocked by the light itself";
     }
+  }
+}
+
+// A quad light 1e-4 above a ceiling 2 units over the floor (a light hidden above it): every shadow ray from the floor
+// must meet the ceiling. With the shadow segment stopping 1e-4 of its length (2e-4 here) short of the light, the
+// ceiling was ignored and `light` / `nee_mis` lit the room through it (0.10 against 0.008 from BSDF sampling). Near
+// the origin: 100 units out, the light point's own error bound (8e-4) is more than the gap, and no renderer in float
+// can tell the two surfaces apart.
+TEST(RayOrigins, ShadowRaysSeeAnOccluderJustInFrontOfTheLight) {
+  for (const float offset : {0.0f, 1.0f}) {
+    Scene scene;
+    const Vec3 at{offset, 0, offset};
+    scene.materials.push_back(make_diffuse_material(Color(0.5f)));
+    const auto square = [&](float y, int light) {
+      TriangleMesh m;
+      m.positions = {at + Vec3{-1, y, -1}, at + Vec3{1, y, -1}, at + Vec3{1, y, 1}, at + Vec3{-1, y, 1}};
+      m.indices = {0, 1, 2, 0, 2, 3};
+      m.material = light < 0 ? 0 : -1;
+      m.light = light;
+      return m;
+    };
+    TriangleMesh floor = square(0, -1);
+    floor.indices = {0, 2, 1, 0, 3, 2};  // facing up
+    scene.geometry.add_mesh(std::move(floor));
+    scene.geometry.add_mesh(square(2, -1));  // the ceiling
+    TriangleMesh panel = square(2 + 1e-4f, 0);
+    scene.lights.push_back(make_quad_light(panel.positions[0], {2, 0, 0}, {0, 0, 2}, Color(10)));
+    scene.geometry.add_mesh(std::move(panel));
+    scene.finalize();
+    Pcg32 rng(3, 9);
+    int traced = 0, unblocked = 0;
+    for (int i = 0; i < 2000; ++i) {
+      Hit hit;
+      const float x = 1.6f * rng.next_float() - 0.8f, z = 1.6f * rng.next_float() - 0.8f;
+      const std::optional<Vertex> v = floor_vertex(scene, at, x, z, hit);
+      ASSERT_TRUE(v.has_value());
+      LightDraw draw;
+      draw.choice = {0, 1.0f};
+      const std::optional<LightSample> ls = scene.lights[0]->sample(v->ctx, {rng.next_float(), rng.next_float()});
+      ASSERT_TRUE(ls.has_value());
+      draw.sample = *ls;
+      draw.ok = true;
+      PathCounters counters;
+      const std::optional<ShadowQuery> q = sample_direct(*v, draw, false, MisHeuristic::Balance, counters);
+      if (!q) continue;
+      ++traced;
+      unblocked += !scene.geometry.occluded(q->ray);
+    }
+    EXPECT_GT(traced, 1900) << offset;
+    EXPECT_EQ(unblocked, 0) << "of " << traced << " shadow rays at " << offset << ", through the ceiling";
   }
 }
 
