@@ -62,6 +62,20 @@ std::optional<Vertex> floor_vertex(const Scene& scene, Vec3 at, float x, float z
   return make_vertex(scene, hit, down.d);
 }
 
+// The shadow ray of the scene's only light sampled at v with numbers u, as `light` and `nee_mis` make it
+// (sample_direct); nullopt when the light or the sample gives none.
+std::optional<Ray> shadow_ray_of(const Scene& scene, const Vertex& v, Vec2 u) {
+  LightDraw draw;
+  draw.choice = {0, 1.0f};
+  const std::optional<LightSample> ls = scene.lights[0]->sample(v.ctx, u);
+  if (!ls) return std::nullopt;
+  draw.sample = *ls;
+  draw.ok = true;
+  PathCounters counters;
+  const std::optional<ShadowQuery> q = sample_direct(v, draw, false, MisHeuristic::Balance, counters);
+  return q ? std::optional<Ray>(q->ray) : std::nullopt;
+}
+
 TEST(RayOrigins, ShadowRaysReachSampledLightPointsFarFromTheOrigin) {
   for (const float offset : {0.0f, 1e3f, 1e4f, 1e5f}) {
     for (const Kind kind : {Kind::Sphere, Kind::Quad, Kind::Mesh}) {
@@ -77,17 +91,10 @@ TEST(RayOrigins, ShadowRaysReachSampledLightPointsFarFromTheOrigin) {
         const float x = 6 * rng.next_float() - 3, z = 6 * rng.next_float() - 3;
         const std::optional<Vertex> v = floor_vertex(scene, at, x, z, hit);
         ASSERT_TRUE(v.has_value()) << what;
-        LightDraw draw;
-        draw.choice = {0, 1.0f};
-        const std::optional<LightSample> ls = scene.lights[0]->sample(v->ctx, {rng.next_float(), rng.next_float()});
-        if (!ls) continue;
-        draw.sample = *ls;
-        draw.ok = true;
-        PathCounters counters;
-        const std::optional<ShadowQuery> q = sample_direct(*v, draw, false, MisHeuristic::Balance, counters);
-        if (!q) continue;
+        const std::optional<Ray> ray = shadow_ray_of(scene, *v, {rng.next_float(), rng.next_float()});
+        if (!ray) continue;
         ++traced;
-        blocked += scene.geometry.occluded(q->ray);
+        blocked += scene.geometry.occluded(*ray);
       }
       EXPECT_GT(traced, 3000) << what;
       EXPECT_EQ(blocked, 0) << what << ": of " << traced << " shadow rays, " << blocked
@@ -129,17 +136,10 @@ TEST(RayOrigins, ShadowRaysSeeAnOccluderJustInFrontOfTheLight) {
       const float x = 1.6f * rng.next_float() - 0.8f, z = 1.6f * rng.next_float() - 0.8f;
       const std::optional<Vertex> v = floor_vertex(scene, at, x, z, hit);
       ASSERT_TRUE(v.has_value());
-      LightDraw draw;
-      draw.choice = {0, 1.0f};
-      const std::optional<LightSample> ls = scene.lights[0]->sample(v->ctx, {rng.next_float(), rng.next_float()});
-      ASSERT_TRUE(ls.has_value());
-      draw.sample = *ls;
-      draw.ok = true;
-      PathCounters counters;
-      const std::optional<ShadowQuery> q = sample_direct(*v, draw, false, MisHeuristic::Balance, counters);
-      if (!q) continue;
+      const std::optional<Ray> ray = shadow_ray_of(scene, *v, {rng.next_float(), rng.next_float()});
+      if (!ray) continue;
       ++traced;
-      unblocked += !scene.geometry.occluded(q->ray);
+      unblocked += !scene.geometry.occluded(*ray);
     }
     EXPECT_GT(traced, 1900) << offset;
     EXPECT_EQ(unblocked, 0) << "of " << traced << " shadow rays at " << offset << ", through the ceiling";
