@@ -153,7 +153,8 @@ int run_render(const RenderArgs& args) {
   }
   Film film(s.width, s.height, film_options);
   RenderOptions ro;
-  ro.spp = s.time_budget > 0 && !args.overrides.spp ? kTimedRenderSpp : s.spp;
+  const bool timed = s.time_budget > 0 && !args.overrides.spp;  // the budget, not a sample count, ends the render
+  ro.spp = timed ? kTimedRenderSpp : s.spp;
   ro.time_budget = s.time_budget;
   ro.threads = s.threads;
   ro.cancel = &g_interrupted;
@@ -194,7 +195,7 @@ int run_render(const RenderArgs& args) {
   // Only now: a second signal during the write would otherwise leave a temporary file behind.
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
-  if (ro.spp == kTimedRenderSpp && st.spp >= kTimedRenderSpp)  // a warning: shown also with -q
+  if (timed && st.spp >= kTimedRenderSpp)  // a warning: shown also with -q
     std::fprintf(stderr, "lumis: warning: stopped at %u spp, the most a timed render takes, after %.3g s of the %g s "
                  "budget\n", kTimedRenderSpp, st.seconds, s.time_budget);
   if (!args.quiet) {
