@@ -36,7 +36,7 @@ struct Vertex {
   Vec3 ng;                   ///< geometric normal flipped toward wo (world)
   Bsdf bsdf;
   Vec3 wo;                   ///< local outgoing direction (toward the previous vertex), wo.z > 0
-  LightSampleContext ctx;    ///< receiver for light sampling: hit point and ng
+  LightSampleContext ctx;    ///< light_context(hit): the rays' origin off the surface, and ng
 };
 
 /// What the previous vertex passes on to the next emitter hit.
