@@ -76,7 +76,7 @@ inline Vec3 facing_ng(const Hit& hit) { return hit.front ? hit.ng : -hit.ng; }
 /// The receiver for light sampling at a hit (Vertex::ctx, whether drawn in make_vertex or draw_lights), world
 /// space: the point every ray leaving the hit on its facing side starts from (spawn_ray's offset origin, bit for
 /// bit) and facing_ng. Light directions drawn from hit.p itself missed small lights from that origin (`mis`
-/// traces them: 3 % too dark under a 0.03-radius sphere over a 2000-unit ground, whose offset is 4e-3).
+/// traces them: 4 % too dark under a 0.03-radius sphere over a 2000-unit ground, whose offset is 4e-3).
 inline LightSampleContext light_context(const Hit& hit) {
   const Vec3 ng = facing_ng(hit);
   return {offset_ray_origin(hit.p, hit.p_error, ng, ng), ng};

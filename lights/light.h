@@ -42,6 +42,12 @@ inline float sphere_importance(const SphereEmitter& s, const LightSampleContext&
   return hidden ? 0.0f : importance;
 }
 
+/// Rounding-error bound (world units, per axis) of a sampled light point computed from receiver p and distance
+/// dist, or from the light's own coordinates, whose largest magnitudes sum to extent (LightSample::p_error).
+inline float sampled_point_error(Vec3 p, float dist, float extent) {
+  return (max_component(abs(p)) + dist + extent) * kErrorScale;
+}
+
 // The sample structs below have constructors so that std::make_optional<T>(members...) builds them in place: a
 // T built in a temporary and then copied into the optional is read back 16 bytes at a time from 4-byte stores, and
 // every such read waits on a failed store forward (docs/performance.md, "Store forwarding").

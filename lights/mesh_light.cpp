@@ -190,7 +190,7 @@ class MeshLight final : public Light {
     pdf *= triangles_.pmf(t);
     // Either way p_light is computed from the receiver and the triangle's corners.
     const float extent = max_component(max(abs(a), max(abs(b), abs(c))));
-    const float err = (max_component(abs(ctx.p)) + dist + 3 * extent) * kErrorScale;
+    const float err = sampled_point_error(ctx.p, dist, 3 * extent);
     return std::make_optional<LightSample>(radiance_at(t, bary), wi, dist, pdf, p_light, n, err);
   }
   Vec3 vertex(size_t t, int k) const { return positions_[indices_[3 * t + k]]; }

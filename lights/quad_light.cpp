@@ -51,7 +51,7 @@ class QuadLight final : public Light {
       pdf = dist2 / (cos_l * area_);
     }
     // Either way p_light is computed from the receiver, the corner and the edges.
-    const float err = (max_component(abs(ctx.p)) + dist + extent_) * kErrorScale;
+    const float err = sampled_point_error(ctx.p, dist, extent_);
     return std::make_optional<LightSample>(radiance_, wi, dist, pdf, p_light, n_, err);
   }
 

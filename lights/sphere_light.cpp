@@ -92,7 +92,7 @@ class SphereLight final : public Light {
   /// Rounding-error bound (world units, per axis) of a point sampled from receiver p at distance t: cap samples
   /// are computed as p + t wi, area samples as c + r n.
   float point_error(Vec3 p, float t) const {
-    return (max_component(abs(c_)) + r_ + max_component(abs(p)) + t) * kErrorScale;
+    return sampled_point_error(p, t, max_component(abs(c_)) + r_);
   }
   SphereEmitter params() const { return {c_, r_, luminance(radiance_)}; }
   /// 1 - cos of the half-angle of the cap the sphere subtends from squared distance d2 > r^2.
