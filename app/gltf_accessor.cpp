@@ -2,6 +2,7 @@
 // checks on every byte range, so that a malformed file is a SceneError and never an out-of-bounds read.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "app/gltf_internal.h"
@@ -185,13 +186,18 @@ Packed pack_accessor(const Context& ctx, int index, const std::string& where, co
     if (stride < static_cast<uint64_t>(p.elem_size))
       ctx.fail(at, "bufferViews[" + std::to_string(a.bufferView) + "].byteStride " + std::to_string(stride) +
                        " is smaller than the element size " + std::to_string(p.elem_size));
-    if (p.count > 0) {
-      const uint64_t end = uint64_t(a.byteOffset) + stride * (p.count - 1) + p.elem_size;
-      if (end > size)
-        ctx.fail(at, "byteOffset " + std::to_string(a.byteOffset) + " + " + std::to_string(p.count) +
-                         " elements (stride " + std::to_string(stride) + ") need " + std::to_string(end) +
-                         " bytes, but bufferViews[" + std::to_string(a.bufferView) + "] has " +
-                         std::to_string(size) + used);
+    // In subtractions that cannot wrap: a byteOffset near 2^64 made the sum small and let the copy below read
+    // outside the buffer.
+    const uint64_t room = a.byteOffset <= size ? size - a.byteOffset : 0;
+    if (p.count > 0 && (a.byteOffset > size || p.elem_size > room || (p.count - 1) > (room - p.elem_size) / stride)) {
+      char need[48];  // the bytes asked for, which may exceed 2^64
+      std::snprintf(need, sizeof need, "%.0Lf",
+                    static_cast<long double>(a.byteOffset) + static_cast<long double>(stride) * (p.count - 1) +
+                        p.elem_size);
+      ctx.fail(at, "byteOffset " + std::to_string(a.byteOffset) + " + " + std::to_string(p.count) +
+                       " elements (stride " + std::to_string(stride) + ") need " + need +
+                       " bytes, but bufferViews[" + std::to_string(a.bufferView) + "] has " +
+                       std::to_string(size) + used);
     }
     // Allocated only now that the buffer view is known to hold every element.
     p.bytes.resize(p.count * p.elem_size);
@@ -239,7 +245,7 @@ std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx, in
   if (v.buffer < 0 || static_cast<size_t>(v.buffer) >= ctx.model.buffers.size())
     ctx.fail(at + ".buffer", "buffer index " + std::to_string(v.buffer) + " out of range");
   const auto& data = ctx.model.buffers[v.buffer].data;
-  if (uint64_t(v.byteOffset) + uint64_t(v.byteLength) > data.size())
+  if (v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset)  // a sum could wrap
     ctx.fail(at, "byteOffset " + std::to_string(v.byteOffset) + " + byteLength " + std::to_string(v.byteLength) +
                      " exceeds buffers[" + std::to_string(v.buffer) + "] (" + std::to_string(data.size()) +
                      " bytes)");
