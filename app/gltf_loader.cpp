@@ -273,12 +273,23 @@ void set_camera(Context& ctx, GltfScene& scene, const tinygltf::Node& node, cons
   if (!(p.znear >= 0) || !std::isfinite(p.znear)) ctx.fail(cat + ".perspective.znear", "expected a number >= 0");
   Camera cam;
   cam.from = world.apply_point({0, 0, 0});
-  cam.to = world.apply_point({0, 0, -1});
+  // The view direction as a vector: world.apply_point({0, 0, -1}) rounded back onto `from` 1e9 units out. `to`
+  // stands as far off as `from` is from the origin (at least 1), so rounding it barely turns the view.
+  const Vec3 view = world.apply_vector({0, 0, -1});
+  const float scale = length(view);
+  if (!is_finite(cam.from) || !std::isfinite(scale) || !(scale > 0))
+    ctx.fail(at, "camera node transform is degenerate");
+  cam.to = cam.from + view * (std::max(1.0f, max_component(abs(cam.from))) / scale);
   cam.up = normalize(world.apply_vector({0, 1, 0}));
   // znear is in camera space: scale it like the view direction.
-  cam.near_clip = static_cast<float>(p.znear) * length(cam.to - cam.from);
+  cam.near_clip = static_cast<float>(p.znear) * scale;
+  if (!std::isfinite(cam.near_clip))
+    ctx.fail(cat + ".perspective.znear", "expected a number >= 0 that stays finite in float once scaled by the "
+                                         "camera node's transform");
   cam.fov_y_degrees = static_cast<float>(p.yfov * 180.0 / kPi);
-  if (!is_finite(cam.from) || !is_finite(cam.to) || !is_finite(cam.up) || length(cam.to - cam.from) == 0)
+  if (!(cam.fov_y_degrees > 0))  // 1e-50 passed the check above and is 0 in float
+    ctx.fail(cat + ".perspective.yfov", "expected an angle in (0, pi) radians that is not 0 in float");
+  if (!is_finite(cam.to) || !is_finite(cam.up) || cam.to == cam.from)
     ctx.fail(at, "camera node transform is degenerate");
   std::optional<float> aspect;
   if (p.aspectRatio > 0) aspect = static_cast<float>(p.aspectRatio);

@@ -35,8 +35,10 @@ std::string format_number(float v) {
 }
 
 /// Reject geometry or a given camera (at `camera_location`; empty for a framing camera) too far from the origin,
-/// or geometry too small, for float arithmetic (see kMaxCoordinate, kMinSize).
-void check_extent(const Scene& scene, const std::string& path, const std::string& camera_location) {
+/// or geometry too small, for float arithmetic (see kMaxCoordinate, kMinSize). near_location: where the camera's
+/// near clip distance is given (empty: none is).
+void check_extent(const Scene& scene, const std::string& path, const std::string& camera_location,
+                  const std::string& near_location = "") {
   const Bounds3 b = scene.geometry.bounds();
   if (!b.empty()) {
     const float extent = std::max(max_component(abs(b.lo)), max_component(abs(b.hi)));
@@ -58,6 +60,13 @@ void check_extent(const Scene& scene, const std::string& path, const std::string
                                                                std::to_string(scene.settings.height) + " image)"
                                                          : "the camera") +
                          " is " + format_number(max_component(abs(scene.camera.from))) +
+                         " scene units from the origin; coordinates must stay within " + format_number(kMaxCoordinate));
+  // Camera rays start near_clip along their direction: past kMaxCoordinate Embree aborts (a near clip of 1e20).
+  const float reach = max_component(abs(scene.camera.from)) + scene.camera.near_clip;
+  if (!(reach <= kMaxCoordinate))
+    throw SceneError(path, near_location,
+                     "the camera's near clip distance, " + format_number(scene.camera.near_clip) +
+                         ", starts its rays up to " + format_number(reach) +
                          " scene units from the origin; coordinates must stay within " + format_number(kMaxCoordinate));
 }
 
@@ -158,7 +167,8 @@ std::unique_ptr<Scene> load_json_scene(const std::string& text, const std::strin
   if (auto c = root.find("camera")) parse_camera(*c, scene->camera);
   if (shapes.empty() && lights.empty()) throw SceneError(path, "", "scene is empty: it has no shapes and no lights");
   if (!root.has("camera")) frame_camera(*scene, builder.bounds());
-  check_extent(*scene, path, root.has("camera") ? "/camera/from" : "");
+  const bool near = root.has("camera") && root["camera"].has("near");
+  check_extent(*scene, path, root.has("camera") ? "/camera/from" : "", near ? "/camera/near" : "");
   scene->finalize();
   return scene;
 }
@@ -193,10 +203,14 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadO
   }
   for (const auto& w : gltf.warnings) std::cerr << path << ": warning: " << w << "\n";
   if (gltf.meshes.empty()) throw SceneError(path, "", "scene is empty: the glTF file has no triangle meshes");
+  std::string camera_at;  // the chosen camera's glTF path, for errors
   if (!options.camera.empty()) {
     const GltfCamera& c = choose_camera(gltf, options.camera, path);
     gltf.camera = c.camera;
     gltf.camera_aspect = c.aspect;
+    camera_at = c.path;
+  } else if (gltf.camera && !gltf.cameras.empty()) {
+    camera_at = gltf.cameras.front().path;  // the default camera is the first
   }
   if (gltf.camera_aspect && *gltf.camera_aspect > 0) {
     // Keep 512 pixels across and follow the camera's aspect ratio for the height.
@@ -221,7 +235,7 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadO
     scene->camera = *gltf.camera;
   else
     frame_camera(*scene, gltf.bounds.empty() ? builder.bounds() : gltf.bounds);
-  check_extent(*scene, path, gltf.camera ? "camera" : "");
+  check_extent(*scene, path, gltf.camera ? camera_at : "", gltf.camera ? camera_at : "");
   scene->finalize();
   return scene;
 }
