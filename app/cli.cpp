@@ -80,7 +80,8 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
             // 1 is left out: with light sampling alone, directions no light covers (indirect light) are never
             // drawn, and the estimate loses that light.
             try {
-              const double v = std::stod(text);
+              // Tested as the float it is kept in: 0.99999999999 rounds to 1.
+              const float v = static_cast<float>(std::stod(text));
               if (!(v >= 0 && v < 1)) return "expected a probability in [0, 1), found " + text;
             } catch (const std::exception&) {
             }
