@@ -185,6 +185,11 @@ TEST_F(SceneLoader, TransformConventions) {
   EXPECT_TRUE(near(p[1], {0, 3, 0}));
   p = mesh_vertex(R"({"matrix": [1,0,0,5, 0,1,0,0, 0,0,1,0, 0,0,0,1]})");
   EXPECT_TRUE(near(p[0], {6, 0, 0}));
+  // A small uniform scale is no more singular as a matrix than as "scale" (an absolute bound rejected it).
+  p = mesh_vertex(R"({"matrix": [1e-5,0,0,0, 0,1e-5,0,0, 0,0,1e-5,0, 0,0,0,1]})");
+  EXPECT_FLOAT_EQ(p[2].z, 1e-5f);
+  p = mesh_vertex(R"({"scale": 1e-5})");
+  EXPECT_FLOAT_EQ(p[2].z, 1e-5f);
 }
 
 TEST_F(SceneLoader, MirroringTransformKeepsTheFrontFace) {

@@ -251,6 +251,13 @@ TEST_F(SceneLoaderErrors, MatrixTogetherWithTranslate) {
                      "/shapes/0/transform/translate", "\"matrix\" replaces translate/rotate/scale");
 }
 
+// Singular relative to the matrix's own scale: the third column lies in the plane of the first two.
+TEST_F(SceneLoaderErrors, MatrixThatFlattensTheShape) {
+  EXPECT_SCENE_ERROR(R"({"shapes": [{"type": "gltf", "file": ")" + kBoxGlb +
+                         R"(", "transform": {"matrix": [1e3,0,1e3,0, 0,1e3,1e3,0, 0,0,1e-4,0, 0,0,0,1]}}]})",
+                     "/shapes/0/transform/matrix", "the matrix is singular");
+}
+
 // Errors: lights.
 
 TEST_F(SceneLoaderErrors, UnknownLightTypeListsValidOnes) {
