@@ -30,7 +30,10 @@ Frame base_shading_frame(const Hit& hit) {
   const float l2 = length_squared(hit.ns);  // the fallback is normalised only when needed
   // Geometry gives unit normals: used as they are (normalize_unless_unit), without a square root and a division on
   // every vertex's critical path. Anything else is normalised, or replaced when it has no length.
-  const Vec3 n = l2 > 1e-20f && std::isfinite(l2) ? normalize_unless_unit(hit.ns) : unit_or(hit.ng, {0, 0, 1});
+  Vec3 n = l2 > 1e-20f && std::isfinite(l2) ? normalize_unless_unit(hit.ns) : unit_or(hit.ng, {0, 0, 1});
+  // Rule 1: on the front face's side. Vertex normals that disagree with the winding (which defines the front face
+  // in glTF) are turned over; left as they were, rule 3 bent them through ng into a view-dependent tilt.
+  if (dot(n, hit.ng) < 0) n = -n;
   const Vec3 tangent{hit.tangent.x, hit.tangent.y, hit.tangent.z};
   if (length_squared(tangent) > 0) return Frame::from_normal_tangent(n, tangent);
   return Frame::from_normal(n);

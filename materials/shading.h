@@ -2,7 +2,8 @@
 // shading-normal rule that keeps shading normals from leaking light or turning faces black.
 //
 // Shading-normal rule (see docs/materials.md):
-//  1. Material::shade(hit) starts from hit.ns (front-face side). A normal map perturbs it in the tangent frame
+//  1. Material::shade(hit) starts from hit.ns, turned to the front face's side (ng's) when the mesh's vertex
+//     normals disagree with its winding. A normal map perturbs it in the tangent frame
 //     (hit.tangent with w = handedness; without tangents, the arbitrary but deterministic Frame::from_normal(ns)).
 //  2. View-independent clamp, inside shade(): the perturbed normal is bent toward the front geometric normal ng
 //     along their great circle until dot(n, ng) >= kMinShadingCosine, so a normal map never points behind the
@@ -24,7 +25,7 @@ inline constexpr float kMinShadingCosine = 0.01f;
 /// Texture lookup at the hit's TEXCOORD set named by the texture (RGBA).
 Vec4 sample_texture(const Texture& texture, const Hit& hit);
 
-/// World-space shading frame at the hit without normal map: n = hit.ns, s follows hit.tangent when present.
+/// World-space shading frame at the hit without normal map: n = hit.ns on ng's side, s follows hit.tangent if any.
 Frame base_shading_frame(const Hit& hit);
 
 /// Normal-mapped world frame: tangent-space normal (texel * 2 - 1, xy scaled by `scale`) expressed in the base

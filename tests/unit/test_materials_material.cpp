@@ -180,6 +180,19 @@ TEST(ShadingRule, NormalMapNeverPointsBehindTheSurface) {
   EXPECT_NEAR(length(n), 1.0f, 1e-6f);
 }
 
+// Rule 1: vertex normals that disagree with the winding (ng) are turned to the front face's side. Left behind
+// it, rule 3 bent them through ng by an amount that depended on wo (a quad with such normals read 0.41-1.16 of
+// its flat twin under nee_mis).
+TEST(ShadingRule, VertexNormalAgainstTheWindingIsTurnedOver) {
+  Hit hit = plane_hit();
+  hit.ns = normalize(Vec3(0.05f, 0, -1));
+  for (const auto& material : {make_diffuse_material(Color(0.8f)), make_pbr_material(PbrParams{})}) {
+    const Frame f = material->shade(hit).frame;
+    EXPECT_NEAR(dot(f.n, normalize(Vec3(-0.05f, 0, 1))), 1.0f, 1e-6f);
+    expect_orthonormal(f);
+  }
+}
+
 TEST(ShadingRule, AdaptKeepsValidFramesAndFixesInvalidOnes) {
   const Vec3 ng(0, 0, 1);
   // Valid configuration: unchanged.
