@@ -309,6 +309,14 @@ case("gltf_zero_accessor_huge", ".gltf", embed(*variant(zero_accessor)),
      "accessors[0]: count 1073741824 without a bufferView")
 case("gltf_bufferview_oob", ".gltf", embed(*variant(set_path(["bufferViews", 1, "byteLength"], 1 << 20))),
      "bufferViews[1]")
+# Found by a review (stop 41): byte ranges near 2^64 wrapped the bounds checks' sums to small numbers, and the
+# copies then read far outside the buffer (a segmentation fault).
+case("gltf_bufferview_offset_wraps", ".gltf",
+     embed(*variant(lambda d: d["bufferViews"][0].update(byteOffset=2 ** 64 - 2 ** 40, byteLength=2 ** 40 + 36))),
+     "bufferViews[0]: byteOffset 18446742974197923840 + byteLength 1099511627812 exceeds buffers[0]")
+case("gltf_accessor_offset_wraps", ".gltf",
+     embed(*variant(lambda d: d["accessors"][0].update(count=3000000, byteOffset=2 ** 64 - (12 * 3000000 - 36)))),
+     "accessors[0]: byteOffset 18446744073673551652 + 3000000 elements (stride 12) need 18446744073709551652 bytes")
 case("gltf_bufferview_index_oob", ".gltf", embed(*variant(set_path(["accessors", 0, "bufferView"], 9))),
      "bufferView index 9 out of range")
 case("gltf_buffer_index_oob", ".gltf", embed(*variant(set_path(["bufferViews", 0, "buffer"], 4))), "bufferViews[0]")
@@ -444,6 +452,33 @@ case("json_gltf_is_folder", ".json", dump(scene(shapes=[{"type": "gltf", "file":
      "/shapes/0/file: is a folder, expected a file")
 case("json_gltf_error_inside", ".json", dump(scene(shapes=[sphere(), {"type": "gltf", "file": "gltf_version_1.gltf"}])),
      "/shapes/1/file: in")
+
+# Found by a review (stop 41): cameras that float arithmetic could not hold.
+case("json_camera_huge_near", ".json", dump(scene(camera={"from": [0, 1, 4], "to": [0, 1, 0], "near": 1e20})),
+     "/camera/near: the camera's near clip distance, 1e+20, starts its rays up to 1e+20 scene units from the origin")
+case("cli_light_probability_rounds_to_one", ".json", dump(BASE), "expected a probability in [0, 1)", 2,
+     "--integrator mis --mis-light-probability 0.99999999999")
+
+
+def camera(perspective, translation=(0, 0.3, 3)):
+    """A perspective camera node looking down -z at the triangle."""
+    def mutate(doc):
+        doc["cameras"] = [{"type": "perspective", "perspective": perspective}]
+        doc["nodes"].append({"camera": 0, "translation": list(translation)})
+        doc["scenes"][0]["nodes"].append(1)
+    return mutate
+
+
+case("gltf_camera_huge_znear", ".gltf", embed(*variant(camera({"yfov": 0.8, "znear": 1e30}))),
+     "nodes[1]: the camera's near clip distance, 1e+30")
+case("gltf_camera_znear_beyond_float", ".gltf", embed(*variant(camera({"yfov": 0.8, "znear": 1e39}))),
+     "cameras[0].perspective.znear: expected a number >= 0 that stays finite in float")
+case("gltf_camera_yfov_underflows", ".gltf", embed(*variant(camera({"yfov": 1e-50, "znear": 0.01}))),
+     "cameras[0].perspective.yfov: expected an angle in (0, pi) radians that is not 0 in float")
+# 1e9 units out (within the 1e15 limit) the camera's point at z = -1 rounded onto its position: "degenerate".
+case("gltf_camera_far_from_origin", ".gltf",
+     embed(*variant(camera({"yfov": 0.8, "znear": 0.01}, (0, 300, 1e9)),
+                    positions=[(-1000, 0, 1e9 - 3000), (1000, 0, 1e9 - 3000), (0, 1000, 1e9 - 3000)])), "", 0)
 
 # Remove stale cases (files this script no longer writes).
 keep = set(written)
