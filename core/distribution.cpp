@@ -1,9 +1,11 @@
 // Piecewise-constant distributions by inversion of a tabulated CDF (the lecture's discrete sampling, with a binary
-// search in place of the linear one). The CDF is summed in double and normalised so that cdf_.back() == 1 exactly.
+// search in place of the linear one). The CDF is summed in double and rounded to the sampler's 2^-24 grid, so that
+// pmf() and the densities are the probabilities sampling realises, exactly.
 #include "core/distribution.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
 namespace lumis {
@@ -17,9 +19,27 @@ Distribution1D::Distribution1D(std::span<const float> f) : func_(f.begin(), f.en
   std::vector<double> sum(n + 1, 0.0);
   for (size_t i = 0; i < n; ++i) sum[i + 1] = sum[i] + static_cast<double>(func_[i]) / n;
   integral_ = static_cast<float>(sum[n]);
+  // The CDF on the sampler's grid (multiples of 2^-24, exact in float): a cell's probability is then the width of
+  // its interval exactly, for u on that grid or uniform on [0, 1), and pmf() returns that width. The running sum is
+  // rounded to the grid, but every cell that can be drawn (f > 0; all of them when f is all zero) keeps at least one
+  // step, while there are at most 2^24 such cells: one far below 2^-24 of the total was never drawn, so its light
+  // was lost. The cells after it give the step back as soon as they are wide enough.
+  const bool weighted = sum[n] > 0;
+  const auto drawable = [&](size_t i) { return !weighted || func_[i] > 0; };
+  size_t remaining = 0;
+  for (size_t i = 0; i < n; ++i) remaining += drawable(i);
+  constexpr uint64_t kSteps = uint64_t{1} << 24;
+  const bool one_each = remaining <= kSteps;
   cdf_.resize(n + 1);
-  for (size_t i = 0; i <= n; ++i)
-    cdf_[i] = sum[n] > 0 ? static_cast<float>(sum[i] / sum[n]) : static_cast<float>(double(i) / n);
+  uint64_t c = 0;  // steps below cell i
+  for (size_t i = 0; i < n; ++i) {
+    cdf_[i] = static_cast<float>(c) * 0x1p-24f;
+    if (!drawable(i)) continue;
+    --remaining;
+    const double share = weighted ? sum[i + 1] / sum[n] : static_cast<double>(i + 1) / static_cast<double>(n);
+    const uint64_t target = static_cast<uint64_t>(std::llround(std::min(share, 1.0) * static_cast<double>(kSteps)));
+    c = one_each ? std::clamp(target, c + 1, kSteps - remaining) : std::max(c, target);
+  }
   cdf_[n] = 1.0f;
 }
 
@@ -37,7 +57,7 @@ float Distribution1D::sample_continuous(float u, float* pdf, size_t* cell) const
   const size_t i = find_cell(cdf_, u);
   const float width = cdf_[i + 1] - cdf_[i];
   const float du = width > 0 ? clamp((u - cdf_[i]) / width, 0.0f, 1.0f) : 0.0f;
-  if (pdf) *pdf = integral_ > 0 ? func_[i] / integral_ : 1.0f;
+  if (pdf) *pdf = width * static_cast<float>(size());
   if (cell) *cell = i;
   // Rounding of (i + du) / n can reach 1 for the last cell (the domain is [0, 1)), and for du near 1 the next
   // cell's lower edge (for i ~ 1000, about 3e-5 of the samples): x is kept in cell i as pdf_continuous() finds it,
@@ -53,7 +73,7 @@ float Distribution1D::sample_continuous(float u, float* pdf, size_t* cell) const
 float Distribution1D::pdf_continuous(float x) const {
   if (!(x >= 0 && x < 1)) return 0.0f;
   const size_t i = std::min(static_cast<size_t>(x * static_cast<float>(size())), size() - 1);
-  return integral_ > 0 ? func_[i] / integral_ : 1.0f;
+  return (cdf_[i + 1] - cdf_[i]) * static_cast<float>(size());
 }
 
 size_t Distribution1D::sample_discrete(float u, float* pmf_out, float* u_remapped) const {
@@ -68,7 +88,7 @@ size_t Distribution1D::sample_discrete(float u, float* pmf_out, float* u_remappe
 
 float Distribution1D::pmf(size_t i) const {
   if (i >= size()) return 0.0f;
-  return integral_ > 0 ? func_[i] / (integral_ * static_cast<float>(size())) : 1.0f / static_cast<float>(size());
+  return cdf_[i + 1] - cdf_[i];
 }
 
 float Distribution1D::invert(float x) const {

@@ -10,7 +10,9 @@
 namespace lumis {
 
 /// Piecewise-constant density on [0, 1) with n equal cells of weight f[i] >= 0 (all-zero input -> uniform).
-/// Sampling is O(log n) by binary search of the CDF.
+/// Sampling is O(log n) by binary search of the CDF. The CDF lies on the sampler's 2^-24 grid: cell i is drawn with
+/// probability pmf(i), which is f[i] / sum f to within 2^-24 and never 0 for f[i] > 0 (up to 2^24 such cells);
+/// pmf() and the densities are what sampling realises, exactly.
 class Distribution1D {
  public:
   Distribution1D() = default;
@@ -25,9 +27,9 @@ class Distribution1D {
   float sample_continuous(float u, float* pdf, size_t* cell = nullptr) const;
   /// Density on [0,1) at x.
   float pdf_continuous(float x) const;
-  /// Discrete sample of a cell with probability f[i]/sum f; *pmf that probability; *u_remapped reuses u in [0,1).
+  /// Discrete sample of a cell with probability pmf(i); *pmf that probability; *u_remapped reuses u in [0,1).
   size_t sample_discrete(float u, float* pmf = nullptr, float* u_remapped = nullptr) const;
-  /// Probability of cell i under sample_discrete.
+  /// Probability of cell i under sample_discrete (the width of its CDF interval).
   float pmf(size_t i) const;
   /// Inverse of sample_continuous.
   float invert(float x) const;
