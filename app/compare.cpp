@@ -143,7 +143,6 @@ int run_compare(const CompareArgs& args) {
                            dir.string() + "; copy it elsewhere or give another -o");
     scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera});
     apply_overrides(args.overrides, *scene);
-    if (args.overrides.spp) scene->settings.time_budget = 0;  // --spp asks for equal samples, over the scene's time
     scene->update_light_selector();
     if (!args.crop.empty()) crop = parse_crop(args.crop, scene->settings.width, scene->settings.height);
   } catch (const SceneError& e) {

@@ -25,6 +25,8 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
   if (o.width && !o.height) s.height = follow(*o.width / aspect);
   if (o.height && !o.width) s.width = follow(*o.height * aspect);
   if (o.threads) s.threads = *o.threads;
+  // --spp alone asks for that many samples, over a scene file's `time`; with --time too, whichever comes first.
+  if (o.spp && !o.time) s.time_budget = 0;
   if (o.time) s.time_budget = *o.time;
   if (o.exposure) s.exposure = *o.exposure;
   if (o.mis_light_probability) s.mis_light_probability = *o.mis_light_probability;

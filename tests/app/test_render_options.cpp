@@ -86,6 +86,26 @@ TEST(RenderOptions, EachOverrideReplacesItsSettingAndNoOther) {
   EXPECT_EQ(s.uniform_measure, UniformMeasure::SolidAngle);
 }
 
+// A scene file's `time` and the command line's --spp: --spp alone renders that many samples (as `compare --spp` does,
+// so that compare's "reproduce with lumis render" line is the same image); --spp and --time both keep both, and the
+// render stops at whichever comes first; --time alone replaces the scene's budget.
+TEST(RenderOptions, SppAloneOverridesTheScenesTimeBudget) {
+  const auto budget = [](std::optional<uint32_t> spp, std::optional<double> time) {
+    RenderSettings s = scene_settings();
+    s.time_budget = 5;
+    RenderOverrides o;
+    o.spp = spp;
+    o.time = time;
+    apply_overrides(o, s);
+    return s.time_budget;
+  };
+  EXPECT_EQ(budget(std::nullopt, std::nullopt), 5.0);
+  EXPECT_EQ(budget(16, std::nullopt), 0.0);
+  EXPECT_EQ(budget(16, 2.0), 2.0);
+  EXPECT_EQ(budget(std::nullopt, 2.0), 2.0);
+  EXPECT_EQ(budget(std::nullopt, 0.0), 0.0);
+}
+
 TEST(RenderOptions, WidthOrHeightAloneKeepsTheAspectRatio) {
   const auto size = [](std::optional<int> w, std::optional<int> h) {
     RenderSettings s = scene_settings();  // 400 x 100
