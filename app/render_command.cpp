@@ -161,7 +161,7 @@ int run_render(const RenderArgs& args) {
   const bool tty = stderr_is_tty() && !args.quiet;
   if (tty) {
     ro.on_progress = [&](const RenderProgress& p) {
-      const double frac = p.samples_total ? static_cast<double>(p.samples_done) / p.samples_total : 1;
+      const double frac = p.fraction();  // of the time budget, for a timed render
       const double eta = frac > 0 ? p.elapsed * (1 - frac) / frac : 0;
       const int bar = 30, filled = static_cast<int>(frac * bar);
       std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  %.1fs elapsed  ETA %.1fs  %s samples/s   ", filled,

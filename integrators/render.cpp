@@ -143,7 +143,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
     done = end;
     stats.samples += pixels * (end - begin);
     const double pass_seconds = seconds_since(pass_start);
-    if (options.on_progress) options.on_progress({done * pixels, spp * pixels, seconds_since(t0)});
+    if (options.on_progress) options.on_progress({done * pixels, spp * pixels, seconds_since(t0), options.time_budget});
     if (options.time_budget > 0 && seconds_since(t0) >= options.time_budget) break;
     // Next pass: aim at ~0.5 s, and at a quarter of what is left of a time budget, so that a pass whose speed was
     // over-estimated (the first one, with cold caches or warm threads) overshoots the budget by little.

@@ -5,6 +5,7 @@
 // boundary with every pixel at the same count.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -19,6 +20,14 @@ namespace lumis {
 struct RenderProgress {
   uint64_t samples_done = 0, samples_total = 0;  ///< pixel samples
   double elapsed = 0;                            ///< seconds
+  double time_budget = 0;                        ///< seconds; 0 = none
+
+  /// Share of the render done, in [0, 1]: samples of those asked for, or time of the budget, whichever is further.
+  double fraction() const {
+    const double by_samples = samples_total ? static_cast<double>(samples_done) / samples_total : 1.0;
+    const double by_time = time_budget > 0 ? elapsed / time_budget : 0.0;
+    return by_samples > by_time ? std::min(by_samples, 1.0) : std::min(by_time, 1.0);
+  }
 };
 
 /// The samples per pixel a render under a time budget asks for (`--time`, `compare` at equal time): the budget, not

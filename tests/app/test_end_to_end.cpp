@@ -186,10 +186,15 @@ TEST(EndToEnd, EarlyStopReportsTheSamplesTaken) {
   by_cancel.on_progress = [&](const RenderProgress& p) {
     ++reports;
     EXPECT_EQ(p.samples_done, pixels);
+    EXPECT_EQ(p.time_budget, 0.0);
     cancel = true;
   };
   RenderOptions by_time;
   by_time.time_budget = 1e-9;
+  by_time.on_progress = [&](const RenderProgress& p) {
+    EXPECT_EQ(p.time_budget, 1e-9);  // the budget reaches the progress report, whose fraction is then of the time
+    EXPECT_EQ(p.fraction(), 1.0);
+  };
   for (const RenderOptions& options : {by_cancel, by_time}) {
     const test::Rendered r = test::render_film(*scene, 64, options);
     EXPECT_TRUE(r.stats.stopped_early);
@@ -201,6 +206,16 @@ TEST(EndToEnd, EarlyStopReportsTheSamplesTaken) {
   EXPECT_FALSE(full.stats.stopped_early);
   EXPECT_EQ(full.stats.spp, 2u);
   EXPECT_EQ(full.stats.samples, 2 * pixels);
+}
+
+// The progress bar's share: of the samples asked for, or of the time budget for a timed render (which asks for 2^20
+// spp, so that by samples a 1.5 s render read "0.2 %, ETA 956 s"); whichever is further, never above 1.
+TEST(RenderProgress, FractionIsOfTheSamplesOrOfTheBudget) {
+  EXPECT_EQ((RenderProgress{16, 64, 3.0, 0}.fraction()), 0.25);
+  EXPECT_EQ((RenderProgress{1, uint64_t{1} << 20, 0.75, 1.5}.fraction()), 0.5);
+  EXPECT_EQ((RenderProgress{48, 64, 0.75, 1.5}.fraction()), 0.75);  // --spp and --time: the further of the two
+  EXPECT_EQ((RenderProgress{1, 64, 2.0, 1.5}.fraction()), 1.0);     // a pass that overshot the budget
+  EXPECT_EQ((RenderProgress{0, 0, 0.0, 0}.fraction()), 1.0);
 }
 
 TEST(EndToEnd, FurnaceSceneMatchesClosedForm) {
