@@ -113,9 +113,7 @@ Mat4 JsonSceneBuilder::parse_transform(const JsonNode& node) const {
     // Singular relative to its own scale (Hadamard: |det| <= the product of the column lengths), in double: an
     // absolute bound (1e-12) rejected a uniform scale of 1e-5, which "scale" accepts.
     const auto at = [&](int i, int j) { return static_cast<double>(r.m[i][j]); };
-    const double det = at(0, 0) * (at(1, 1) * at(2, 2) - at(1, 2) * at(2, 1)) -
-                       at(0, 1) * (at(1, 0) * at(2, 2) - at(1, 2) * at(2, 0)) +
-                       at(0, 2) * (at(1, 0) * at(2, 1) - at(1, 1) * at(2, 0));
+    const double det = r.determinant3();
     double columns = 1;
     for (int j = 0; j < 3; ++j) columns *= std::sqrt(at(0, j) * at(0, j) + at(1, j) * at(1, j) + at(2, j) * at(2, j));
     if (!(std::abs(det) > 1e-6 * columns)) m->fail("the matrix is singular (it flattens the shape)");

@@ -68,9 +68,11 @@ Vec3 Mat4::apply_normal(Vec3 n) const {
   return r;
 }
 
-float Mat4::determinant3() const {
-  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+double Mat4::determinant3() const {
+  // In double: in float a scale of 1e13 overflows the product to infinity, and larger entries make it NaN.
+  const auto a = [this](int i, int j) { return static_cast<double>(m[i][j]); };
+  return a(0, 0) * (a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)) - a(0, 1) * (a(1, 0) * a(2, 2) - a(1, 2) * a(2, 0)) +
+         a(0, 2) * (a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0));
 }
 
 Mat4 Mat4::inverse() const {

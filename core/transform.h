@@ -22,7 +22,7 @@ struct Mat4 {
   Vec3 apply_vector(Vec3 v) const;
   /// Transform a normal by the inverse transpose (not normalised).
   Vec3 apply_normal(Vec3 n) const;
-  float determinant3() const;  ///< determinant of the upper-left 3x3 (negative: handedness flips)
+  double determinant3() const;  ///< determinant of the upper-left 3x3, in double (negative: handedness flips)
   Mat4 inverse() const;
   bool is_finite() const;
 };
