@@ -16,6 +16,7 @@
 
 #include "app/commands.h"
 #include "app/diff.h"
+#include "app/memory_check.h"
 #include "app/montage.h"
 #include "app/plot.h"
 #include "app/scene_error.h"
@@ -145,6 +146,15 @@ int run_compare(const CompareArgs& args) {
     apply_overrides(args.overrides, *scene);
     scene->update_light_selector();
     if (!args.crop.empty()) crop = parse_crop(args.crop, scene->settings.width, scene->settings.height);
+    // Up front, like render: the film of one variant at a time, the reference, each variant's image and error map
+    // kept for the montage, and the montage of them all with the writer's copy (RGB floats).
+    const int w = scene->settings.width, h = scene->settings.height;
+    const uint64_t pixels = uint64_t(w) * uint64_t(h), n = names.size();
+    const uint64_t need = render_memory_estimate(w, h, 6) + pixels * (12 + 16 * n + 24 * (n + 1));
+    if (const std::string problem = memory_problem(need, w, h, "compare of " + std::to_string(n) + (n == 1 ? " variant" : " variants"),
+                                                   "films, images, error maps and montage");
+        !problem.empty())
+      throw std::runtime_error(problem);
   } catch (const SceneError& e) {
     std::cerr << "lumis compare: " << e.what() << "\n";
     return 1;

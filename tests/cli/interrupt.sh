@@ -94,4 +94,14 @@ else
   grep -q "needs about .* GiB of memory" "$T/err" || fail "message does not say how much memory"
   [ -z "$(ls -A "$T/mem")" ] || fail "oversized render left files"
 fi
+# The same for compare (once "std::bad_alloc" after loading): refused before its folder is made.
+(ulimit -v 4194304 && exec "$LUMIS" compare "$SCENE" --width 16384 --height 16384 --spp 1 -q -o "$T/mem/cmp") \
+  2>"$T/err"
+code=$?
+if ! grep -q -i "sanitizer" "$T/err"; then
+  [ "$code" = 1 ] || fail "oversized compare exited $code, expected 1: $(cat "$T/err")"
+  grep -q "compare of 5 variants needs about .* GiB of memory" "$T/err" ||
+    fail "compare's message does not say how much memory: $(cat "$T/err")"
+  [ ! -e "$T/mem/cmp" ] || fail "oversized compare left its folder"
+fi
 echo "interrupt, time budget and memory checks passed"
