@@ -8,7 +8,8 @@
 namespace lumis {
 
 /// Writes `bytes` to `path` through a temporary file beside it (`path.tmp-<pid>`): every byte written and the file
-/// closed, each step checked, then renamed over `path`. So `path` keeps what it held before or holds all of `bytes`,
+/// closed, each step checked, then renamed over `path` (over the file it links to, when `path` is a symbolic link:
+/// the link stays). So `path` keeps what it held before or holds all of `bytes`,
 /// never a part. Returns "" on success; otherwise the reason, one line without the temporary name ("cannot write:
 /// No space left on device (after 204800 of 615084 bytes)"), with the temporary file removed.
 std::string write_file_atomically(const std::string& path, std::string_view bytes);

@@ -43,6 +43,31 @@ TEST_F(AtomicWrite, WritesWholeFilesAndReplacesOldOnes) {
   EXPECT_EQ(listing().size(), 2u);
 }
 
+// A path that is a symbolic link (-o latest.png -> renders/0042.png) is written through, as a shell's `>` does: the
+// link stays a link and its target gets the bytes. Renaming over the link replaced it with a file and left the
+// target stale. Relative links are read from the link's folder; a chain is followed; a dangling link creates its
+// target; a loop of links is an error.
+TEST_F(AtomicWrite, ASymbolicLinkIsWrittenThrough) {
+  fs::create_directories(file("renders"));
+  ASSERT_EQ(write_file_atomically(file("renders/0042.png"), "old"), "");
+  fs::create_symlink("renders/0042.png", file("latest.png"));
+  EXPECT_EQ(write_file_atomically(file("latest.png"), "new"), "");
+  EXPECT_TRUE(fs::is_symlink(file("latest.png")));
+  EXPECT_EQ(content("renders/0042.png"), "new");
+  fs::create_symlink(file("latest.png"), file("chain.png"));  // absolute, to a link
+  EXPECT_EQ(write_file_atomically(file("chain.png"), "newer"), "");
+  EXPECT_TRUE(fs::is_symlink(file("chain.png")));
+  EXPECT_EQ(content("renders/0042.png"), "newer");
+  fs::create_symlink("renders/0043.png", file("next.png"));  // dangling
+  EXPECT_EQ(write_file_atomically(file("next.png"), "first"), "");
+  EXPECT_EQ(content("renders/0043.png"), "first");
+  fs::create_symlink("loop-b", file("loop-a"));
+  fs::create_symlink("loop-a", file("loop-b"));
+  EXPECT_NE(write_file_atomically(file("loop-a"), "x"), "");
+  for (const auto& e : fs::directory_iterator(file("renders")))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
 // The case that made this function: a write cut short (full disk, file-size limit) must not leave a short file
 // under the name asked for, and must say how far it got.
 TEST_F(AtomicWrite, AWriteCutShortKeepsTheOldFileAndLeavesNoTemporary) {
