@@ -192,14 +192,19 @@ int run_compare(const CompareArgs& args) {
   report.settings = base;
   report.camera = args.overrides.camera;
   report.crop = crop;
-  bool created = false;  // whether this run created DIR: it is removed again if a failure leaves it empty
+  // The folders this run creates, DIR and any missing parents (innermost first): a failure removes those it leaves
+  // empty, so that `-o a/b/out` leaves no empty a/b behind.
+  std::vector<fs::path> created;
   int rc = 0;
   try {
     // Reference: a given file (checked before DIR is created), or nee_mis at many samples, cached by a hash of
     // everything it depends on.
     Image reference;
     if (!args.reference.empty()) reference = read_reference(args.reference, base, scene_path);
-    created = !fs::exists(dir);
+    for (fs::path p = dir; !p.empty() && !fs::exists(fs::symlink_status(p)); p = p.parent_path()) {
+      created.push_back(p);
+      if (p == p.parent_path()) break;
+    }
     fs::create_directories(dir);
     // Before any rendering: a folder that cannot be written in fails now, not after the reference.
     if (::access(dir.c_str(), W_OK) != 0)
@@ -360,7 +365,8 @@ int run_compare(const CompareArgs& args) {
   }
   if (rc != 0) {
     std::error_code ec;
-    if (created && fs::is_empty(dir, ec)) fs::remove(dir, ec);
+    for (const fs::path& p : created)
+      if (fs::is_empty(p, ec)) fs::remove(p, ec);
     return rc;
   }
   log("wrote " + (dir / "index.html").string() + ", report.md, report.json, montage.png");

@@ -228,6 +228,13 @@ expect 1 "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/rerun"
 for f in report.json report.md index.html; do [ ! -e "$T/rerun/$f" ] || fail "a failed rerun left the old $f"; done
 [ -s "$T/rerun/reference.exr" ] || fail "a failed rerun removed the cached reference"
 
+# A run that fails (here: a file-size limit of 0 stops its first write, the reference's) removes the folders it
+# created and left empty, parents included: -o new/deeper/out once left new/deeper behind.
+(trap '' XFSZ; ulimit -f 0 && exec "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/new/deeper/out") 2>"$T/err"
+code=$?
+[ "$code" = 1 ] || fail "compare under a file-size limit of 0 exited $code, expected 1: $(cat "$T/err")"
+[ ! -e "$T/new" ] || fail "a failed compare left the folders it created: $(find "$T/new" | tr '\n' ' ')"
+
 # A given reference that this run would overwrite (bsdf's image in the output folder) is refused before any work.
 cp "$T/rerun/bsdf.exr" "$T/bsdf-before.exr"
 expect 2 "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/rerun" --reference "$T/rerun/bsdf.exr"
