@@ -172,6 +172,8 @@ Packed pack_accessor(const Context& ctx, int index, const std::string& where, co
   p.count = a.count;
   // Guards the size arithmetic below; no real accessor comes near 2^32 elements.
   if (a.count > (uint64_t(1) << 32)) ctx.fail(at, "count " + std::to_string(a.count) + " is too large");
+  // glTF requires at least one element; an empty instancing accessor once drew its mesh once, as if not instanced.
+  if (a.count < 1) ctx.fail(at + ".count", "0, expected at least 1 element" + used);
   // Without a bufferView the elements are zeros (then sparse values), as the spec says: nothing in the file bounds
   // their number, so lumis does (a hostile count would allocate without limit).
   if (a.bufferView < 0) {

@@ -317,6 +317,16 @@ case("gltf_bufferview_offset_wraps", ".gltf",
 case("gltf_accessor_offset_wraps", ".gltf",
      embed(*variant(lambda d: d["accessors"][0].update(count=3000000, byteOffset=2 ** 64 - (12 * 3000000 - 36)))),
      "accessors[0]: byteOffset 18446744073673551652 + 3000000 elements (stride 12) need 18446744073709551652 bytes")
+case("gltf_accessor_count_zero", ".gltf", embed(*variant(set_path(["accessors", 0, "count"], 0))),
+     "accessors[0].count: 0, expected at least 1 element (used by meshes[0].primitives[0].attributes.POSITION)")
+def empty_instancing(d):
+    d["accessors"].append({"bufferView": 0, "componentType": 5126, "count": 0, "type": "VEC3"})
+    d["nodes"][0]["extensions"] = {"EXT_mesh_gpu_instancing": {"attributes": {"TRANSLATION": len(d["accessors"]) - 1}}}
+    d["extensionsUsed"] = ["EXT_mesh_gpu_instancing"]
+
+
+case("gltf_instancing_count_zero", ".gltf", embed(*variant(empty_instancing)),
+     "expected at least 1 element (used by nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.TRANSLATION)")
 case("gltf_bufferview_index_oob", ".gltf", embed(*variant(set_path(["accessors", 0, "bufferView"], 9))),
      "bufferView index 9 out of range")
 case("gltf_buffer_index_oob", ".gltf", embed(*variant(set_path(["bufferViews", 0, "buffer"], 4))), "bufferViews[0]")
