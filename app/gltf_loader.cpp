@@ -2,6 +2,7 @@
 // world-space meshes. Accessors are in gltf_accessor.cpp, materials in gltf_materials.cpp, primitives in
 // gltf_primitives.cpp.
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -207,7 +208,15 @@ Mat4 local_transform(const Context& ctx, const tinygltf::Node& node, const std::
     }
     if (!node.rotation.empty()) {
       const auto r = vec(node.rotation, 4, "rotation");
-      m = m * Mat4::rotate_quaternion({float(r[0]), float(r[1]), float(r[2]), float(r[3])});
+      // Normalised in double before the float conversion (1e-50 is 0 in float); length 0 is no rotation at all.
+      const double len = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
+      if (!(len > 0) || !std::isfinite(len)) {
+        char found[32];
+        std::snprintf(found, sizeof found, "%g", len);
+        ctx.fail(at + ".rotation", std::string("expected a unit quaternion (x, y, z, w), found one of length ") + found);
+      }
+      m = m * Mat4::rotate_quaternion(
+                  {float(r[0] / len), float(r[1] / len), float(r[2] / len), float(r[3] / len)});
     }
     if (!node.scale.empty()) {
       const auto s = vec(node.scale, 3, "scale");
@@ -248,8 +257,12 @@ std::vector<Mat4> gpu_instances(Context& ctx, AccessorCache& acc, const tinygltf
   for (size_t i = 0; i < count; ++i) {
     Mat4 m;
     if (t) m = m * Mat4::translate({t->values[3 * i], t->values[3 * i + 1], t->values[3 * i + 2]});
-    if (r) m = m * Mat4::rotate_quaternion({r->values[4 * i], r->values[4 * i + 1], r->values[4 * i + 2],
-                                            r->values[4 * i + 3]});
+    if (r) {
+      const Vec4 q{r->values[4 * i], r->values[4 * i + 1], r->values[4 * i + 2], r->values[4 * i + 3]};
+      if (q.x == 0 && q.y == 0 && q.z == 0 && q.w == 0)
+        ctx.fail(eat + ".ROTATION", "element " + std::to_string(i) + " is (0, 0, 0, 0), expected a unit quaternion");
+      m = m * Mat4::rotate_quaternion(q);
+    }
     if (s) m = m * Mat4::scale({s->values[3 * i], s->values[3 * i + 1], s->values[3 * i + 2]});
     out.push_back(m);
   }

@@ -17,8 +17,11 @@ Mat4 Mat4::scale(Vec3 s) {
 }
 
 Mat4 Mat4::rotate_quaternion(Vec4 q) {
-  const float n = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
-  if (n > 0) q = {q.x / n, q.y / n, q.z / n, q.w / n};
+  // Normalised in double: in float the squares of 1e-30 underflow (and of 1e20 overflow), which left the identity.
+  const double qx = q.x, qy = q.y, qz = q.z, qw = q.w;
+  const double n = std::sqrt(qx * qx + qy * qy + qz * qz + qw * qw);
+  if (n > 0 && std::isfinite(n))
+    q = {static_cast<float>(qx / n), static_cast<float>(qy / n), static_cast<float>(qz / n), static_cast<float>(qw / n)};
   const float x = q.x, y = q.y, z = q.z, w = q.w;
   Mat4 r;
   r.m[0][0] = 1 - 2 * (y * y + z * z); r.m[0][1] = 2 * (x * y - z * w);     r.m[0][2] = 2 * (x * z + y * w);

@@ -11,7 +11,7 @@ struct Mat4 {
   static Mat4 identity() { return {}; }
   static Mat4 translate(Vec3 t);
   static Mat4 scale(Vec3 s);
-  /// Rotation by unit quaternion (x, y, z, w), as glTF stores it.
+  /// Rotation by quaternion (x, y, z, w), as glTF stores it; normalised first (in double); length 0: the identity.
   static Mat4 rotate_quaternion(Vec4 q);
   /// Rotation about an axis by an angle in degrees.
   static Mat4 rotate_axis(Vec3 axis, float degrees);

@@ -327,6 +327,20 @@ def empty_instancing(d):
 
 case("gltf_instancing_count_zero", ".gltf", embed(*variant(empty_instancing)),
      "expected at least 1 element (used by nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.TRANSLATION)")
+case("gltf_rotation_zero", ".gltf", embed(*variant(set_path(["nodes", 0, "rotation"], [0, 0, 0, 0]))),
+     "nodes[0].rotation: expected a unit quaternion (x, y, z, w), found one of length 0")
+
+
+def zero_instance_rotation(d):  # the instance's rotation is the first 16 bytes of the positions: (0, 0, 0, 0)
+    d["accessors"].append({"bufferView": 0, "componentType": 5126, "count": 1, "type": "VEC4"})
+    d["nodes"][0]["extensions"] = {"EXT_mesh_gpu_instancing": {"attributes": {"ROTATION": len(d["accessors"]) - 1}}}
+    d["extensionsUsed"] = ["EXT_mesh_gpu_instancing"]
+
+
+case("gltf_instance_rotation_zero", ".gltf",
+     embed(*variant(zero_instance_rotation, positions=[(0, 0, 0), (0, 1, 0), (1, 0, 0)])),
+     "nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.ROTATION: element 0 is (0, 0, 0, 0), expected a unit "
+     "quaternion")
 case("gltf_bufferview_index_oob", ".gltf", embed(*variant(set_path(["accessors", 0, "bufferView"], 9))),
      "bufferView index 9 out of range")
 case("gltf_buffer_index_oob", ".gltf", embed(*variant(set_path(["bufferViews", 0, "buffer"], 4))), "bufferViews[0]")

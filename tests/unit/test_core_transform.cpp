@@ -1,6 +1,9 @@
 // Mat4::determinant3: the sign callers use to flip the winding and the normals of a mirroring transform, and the
-// value the scene file's singular-matrix check divides by the column lengths. Deterministic.
+// value the scene file's singular-matrix check divides by the column lengths; rotate_quaternion's normalisation.
+// Deterministic.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "core/transform.h"
 
@@ -31,6 +34,22 @@ TEST(Mat4, Determinant3OfLargeEntriesIsFiniteAndKeepsItsSign) {
   const double det = rows(-k, 0, 0, 0, k, k, 0, k, 2 * k).determinant3();  // -k (2 k^2 - k^2)
   EXPECT_LT(det, 0.0);
   EXPECT_DOUBLE_EQ(det, -kd * kd * kd);
+}
+
+// A quaternion is normalised before use. In float the squares of 1e-30 underflowed to 0 (and of 1e20 overflowed),
+// so both scaled copies of a quarter turn about +X became the identity.
+TEST(Mat4, RotateQuaternionNormalisesTinyAndHugeQuaternions) {
+  const float h = std::sqrt(0.5f);
+  for (const float k : {1.0f, 1e-30f, 1e20f, 3.0f}) {
+    const Mat4 r = Mat4::rotate_quaternion({h * k, 0, 0, h * k});
+    const Vec3 y = r.apply_vector({0, 1, 0});
+    EXPECT_NEAR(y.x, 0, 1e-6) << "scale " << k;
+    EXPECT_NEAR(y.y, 0, 1e-6) << "scale " << k;
+    EXPECT_NEAR(y.z, 1, 1e-6) << "scale " << k << ": +Y turns to +Z";
+  }
+  const Vec3 same = Mat4::rotate_quaternion({0, 0, 0, 0}).apply_vector({1, 2, 3});  // length 0: the identity
+  EXPECT_EQ(same.x, 1);
+  EXPECT_EQ(same.z, 3);
 }
 
 }  // namespace
