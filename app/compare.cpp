@@ -142,7 +142,7 @@ int run_compare(const CompareArgs& args) {
         if (fs::equivalent(dir / f, args.reference, ec))
           throw UsageError("compare: --reference " + args.reference + " is the " + f + " this run writes in " +
                            dir.string() + "; copy it elsewhere or give another -o");
-    scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera});
+    scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera, args.overrides.width && args.overrides.height});
     apply_overrides(args.overrides, *scene);
     scene->update_light_selector();
     if (!args.crop.empty()) crop = parse_crop(args.crop, scene->settings.width, scene->settings.height);

@@ -216,8 +216,13 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadO
     // Keep 512 pixels across and follow the camera's aspect ratio for the height.
     scene->settings.width = kGltfImageWidth;
     // Clamped before rounding: a tiny ratio (1e-30) overflows lround's range, which once gave a height of 1.
-    scene->settings.height = static_cast<int>(
-        std::lround(std::clamp(double(kGltfImageWidth) / *gltf.camera_aspect, 1.0, double(kMaxResolution))));
+    const double height = double(kGltfImageWidth) / *gltf.camera_aspect;
+    scene->settings.height = static_cast<int>(std::lround(std::clamp(height, 1.0, double(kMaxResolution))));
+    if (!(height >= 0.5 && height < kMaxResolution + 0.5) && !options.size_given)  // the image lacks its shape
+      std::cerr << path << ": warning: " << (camera_at.empty() ? std::string("the camera") : camera_at)
+                << "'s aspectRatio " << *gltf.camera_aspect << " needs an image of " << kGltfImageWidth << " x "
+                << height << " pixels; rendering " << kGltfImageWidth << " x " << scene->settings.height
+                << " (give --width and --height for another shape)\n";
   }
   JsonSceneBuilder builder(*scene, path);
   bool has_lamp = false;

@@ -13,6 +13,9 @@ struct SceneLoadOptions {
   /// A glTF file's camera to render through: its position in the file's list of perspective camera nodes (0 is the
   /// default, the first in depth-first file order) or its node's (else camera's) name. Empty: the default.
   std::string camera;
+  /// Both --width and --height were given: the image's shape is the user's, so a glTF camera's aspect ratio that
+  /// does not fit in an image is not worth a warning.
+  bool size_given = false;
 };
 
 /// Load a scene file: a lumis JSON scene (.json) or a glTF file (.gltf/.glb) with defaults. Returns a finalized

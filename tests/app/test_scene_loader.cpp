@@ -344,8 +344,8 @@ TEST_F(SceneLoader, GltfCameraAspectRatioSetsTheImageHeight) {
   EXPECT_EQ(scene->settings.height, 288);
 }
 
-// An extreme aspectRatio clamps the height to 1..16384 pixels: 1e-30 (a very tall image) gives 16384, as 1e-3
-// does, and 1e30 gives 1.
+// An extreme aspectRatio clamps the height to 1..16384 pixels, with a warning: 1e-30 (a very tall image) gives
+// 16384, as 1e-3 does, and 1e30 gives 1.
 TEST_F(SceneLoader, GltfCameraExtremeAspectRatioClampsTheHeight) {
   const gltf_test::Triangle t;
   for (const auto& [aspect, height] : {std::pair{"1e-30", 16384}, std::pair{"1e-3", 16384}, std::pair{"1e30", 1}}) {
@@ -356,10 +356,21 @@ TEST_F(SceneLoader, GltfCameraExtremeAspectRatioClampsTheHeight) {
                          R"(}}],"meshes":[{"primitives":[)" + gltf_test::Triangle::prim + R"(]}],"buffers":[)" +
                          t.bin.buffer_json() + R"(],"bufferViews":)" + t.views + R"(,"accessors":)" + t.accessors +
                          "}");
+    testing::internal::CaptureStderr();
     const auto scene = load_scene(file);
+    const std::string err = testing::internal::GetCapturedStderr();
     EXPECT_EQ(scene->settings.width, 512) << aspect;
     EXPECT_EQ(scene->settings.height, height) << aspect;
+    // Said, since the image then lacks the camera's shape; 1e30 was once a silent 512 x 1.
+    EXPECT_NE(err.find("warning: nodes[1]'s aspectRatio "), std::string::npos) << aspect << ": " << err;
+    EXPECT_NE(err.find("rendering 512 x " + std::to_string(height)), std::string::npos) << aspect << ": " << err;
+    testing::internal::CaptureStderr();
+    load_scene(file, SceneLoadOptions{"", true});  // --width and --height both given: the shape is the user's
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << aspect;
   }
+  testing::internal::CaptureStderr();
+  load_scene(kAssets + "/gltf/MultiUVTest/glTF/MultiUVTest.gltf");  // 16:9, as asked: no warning
+  EXPECT_EQ(testing::internal::GetCapturedStderr().find("aspectRatio"), std::string::npos);
 }
 
 // Emission read from a texture is usually a decal (the helmet's visor display), too weak to light a model: a file
