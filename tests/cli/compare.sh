@@ -194,6 +194,20 @@ for v in et["variants"]:
 assert timed["mode"] == "equal-spp", ("--spp 2 over the scene time", timed["mode"])
 assert [v["spp"] for v in timed["variants"]] == [2], ("--spp 2 over the scene time", timed["variants"])
 ' "$T/et/report.json" "$T/timed/report.json" || fail "equal time, or --spp over the scene's time budget"
+# ... and so does render's --spp: the reference of a scene with a time budget that would end a render after its first
+# pass is still reproduced by lumis render from reference.json's key (render --spp once kept the scene's budget).
+python3 -c '
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["render"]["time"] = 1e-6
+json.dump(s, open(sys.argv[2], "w"))
+' "$SCENE" "$T/instant.json"
+expect 0 "$LUMIS" compare "$T/instant.json" --width 8 --height 8 --max-depth 1 --spp 2 --integrators bsdf \
+  --reference-spp 8 -o "$T/instant" -q
+ref_seed=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["key"]["seed"])' "$T/instant/reference.json")
+expect 0 "$LUMIS" render "$T/instant.json" --width 8 --height 8 --max-depth 1 --integrator nee_mis --spp 8 \
+  --seed "$ref_seed" -q -o "$T/instant/again.exr"
+expect 0 "$LUMIS" diff "$T/instant/again.exr" "$T/instant/reference.exr" --threshold 0
 
 # The cached reference belongs to one camera of a glTF file: another --camera renders a new one.
 python3 - "$T/cams.gltf" <<'PY'
