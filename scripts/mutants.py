@@ -67,6 +67,8 @@ def main():
                     "%(default)s)")
     ap.add_argument("--only", nargs="+", metavar="ID", help="run only these mutants")
     ap.add_argument("--list", action="store_true", help="list the mutants and exit")
+    ap.add_argument("--check", action="store_true", help="only check the list against the source (a ctest, in "
+                    "seconds): each mutant's text occurs exactly once in its file and changes it; exit 1 otherwise")
     ap.add_argument("--exclude", default=DEFAULT_EXCLUDE, help="ctest -E regex (default: %(default)s)")
     ap.add_argument("--timeout", type=int, default=240, help="per-test timeout in seconds (default 240)")
     args = ap.parse_args()
@@ -77,6 +79,20 @@ def main():
     ids = [m["id"] for m in mutants]
     if len(ids) != len(set(ids)):
         sys.exit("mutants.py: tests/mutants.json has a duplicate id")
+    if args.check:
+        problems = []
+        for m in mutants:
+            path = ROOT / m["file"]
+            n = path.read_text().count(m["old"]) if path.is_file() else -1
+            if n != 1:
+                problems.append(f"{m['id']}: its text occurs {n} times in {m['file']}" if n >= 0
+                                else f"{m['id']}: no file {m['file']}")
+            elif m["old"] == m["new"]:
+                problems.append(f"{m['id']}: changes nothing")
+        for p in problems:
+            print(f"STALE {p}", file=sys.stderr)
+        print(f"mutants.py --check: {len(mutants)} mutants, {len(problems)} stale")
+        return 1 if problems else 0
     if args.list:
         for m in mutants:
             extra = f"  (expected to survive: {m['survive']})" if m.get("survive") else ""
