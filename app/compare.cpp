@@ -9,19 +9,17 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
-#include <sstream>
 
 #include "app/commands.h"
+#include "app/compare_internal.h"
 #include "app/diff.h"
 #include "app/memory_check.h"
 #include "app/montage.h"
 #include "app/plot.h"
 #include "app/scene_error.h"
 #include "app/scene_loader.h"
-#include "core/atomic_write.h"
 #include "core/image_io.h"
 #include "integrators/render.h"
 
@@ -30,44 +28,6 @@ namespace lumis {
 namespace fs = std::filesystem;
 
 namespace {
-
-/// Usage errors found after parsing (bad lists, crop outside the image, mismatched reference).
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-std::string read_file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-/// Whole or not at all, like write_image: readers never see half a report.
-void write_text(const fs::path& path, const std::string& text) {
-  if (const std::string why = write_file_atomically(path.string(), text); !why.empty())
-    throw std::runtime_error(path.string() + ": " + why);
-}
-
-struct Rendered {
-  Image image;
-  RenderStats stats;
-};
-
-Rendered render_variant(Scene& scene, const RenderSettings& settings, uint32_t spp, double time_budget) {
-  scene.settings = settings;
-  const std::unique_ptr<Integrator> integrator = make_integrator(settings);
-  Film film(settings.width, settings.height);
-  RenderOptions ro;
-  // Equal time: ask for far more samples than fit and let the budget stop the render at a pass boundary.
-  ro.spp = time_budget > 0 ? kTimedRenderSpp : spp;
-  ro.time_budget = time_budget;
-  ro.threads = settings.threads;
-  Rendered r;
-  r.stats = render(scene, *integrator, film, ro);
-  r.image = film.to_image();
-  return r;
-}
 
 // Keeps only the R, G, B channels (montage, PNG and metrics need nothing else).
 Image rgb_only(const Image& img) {
@@ -106,17 +66,6 @@ std::vector<std::string> output_file_names(const std::vector<std::string>& varia
   for (const std::string& v : variants)
     for (const std::string& f : {v + ".exr", v + ".png", "error-" + v + ".png"}) out.push_back(f);
   return out;
-}
-
-// A given reference: readable, the render's size, with R, G, B (a UsageError or DiffError otherwise).
-Image read_reference(const std::string& path, const RenderSettings& s, const std::string& scene_path) {
-  Image reference = read_image(path, true);
-  if (reference.width != s.width || reference.height != s.height)
-    throw UsageError("compare: reference " + path + " is " + std::to_string(reference.width) + "x" +
-                     std::to_string(reference.height) + " but " + scene_path + " renders at " +
-                     std::to_string(s.width) + "x" + std::to_string(s.height) + " (use --width/--height)");
-  rgb_channels(reference, path);
-  return reference;
 }
 
 }  // namespace
@@ -212,48 +161,8 @@ int run_compare(const CompareArgs& args) {
     // A report from an earlier run would describe images this run replaces: removed first, so that a run that
     // fails part way leaves no report (the cached reference stays).
     for (const char* f : {"report.json", "report.md", "index.html"}) fs::remove(dir / f);
-    if (!args.reference.empty()) {
-      report.reference_source = args.reference;
-    } else {
-      // 16x the variants' samples (at least 256), within --spp's own limit of 2^30.
-      const uint32_t ref_spp = args.reference_spp ? *args.reference_spp
-                                                  : static_cast<uint32_t>(std::clamp<uint64_t>(
-                                                        16 * uint64_t(base.spp), 256, uint64_t(1) << 30));
-      // The camera chosen in a glTF file changes the image as the file's bytes do.
-      const std::string camera = args.overrides.camera.empty() ? "" : "\n--camera " + args.overrides.camera;
-      const std::string hash = reference_hash(read_file_bytes(scene_path) + camera, base, ref_spp);
-      const fs::path exr = dir / "reference.exr", meta = dir / "reference.json";
-      bool cached = false;
-      if (fs::exists(exr) && fs::exists(meta)) {
-        try {
-          const nlohmann::json j = nlohmann::json::parse(read_file_bytes(meta.string()));
-          if (j.value("hash", "") == hash) {
-            reference = read_image(exr.string());
-            rgb_channels(reference, exr.string());
-            cached = reference.width == base.width && reference.height == base.height;
-          }
-        } catch (const std::exception&) {
-          cached = false;  // unreadable cache: render a new reference
-        }
-      }
-      if (!cached) {
-        log("rendering reference (nee_mis, " + std::to_string(ref_spp) + " spp)");
-        RenderSettings rs = base;
-        rs.integrator = "nee_mis";
-        rs.seed = reference_seed(base.seed);
-        Rendered r = render_variant(*scene, rs, ref_spp, 0);
-        reference = std::move(r.image);
-        write_image(exr.string(), reference);
-        nlohmann::json j = {{"hash", hash}, {"scene", scene_path}, {"key", reference_key(base, ref_spp)},
-                            {"seconds", r.stats.seconds}};
-        write_text(meta, j.dump(2) + "\n");
-      } else {
-        log("reusing cached reference " + exr.string());
-      }
-      report.reference_source = cached ? "cached" : "rendered";
-      report.reference_spp = ref_spp;
-      report.reference_hash = hash;
-    }
+    if (args.reference.empty()) reference = cached_reference(*scene, args, base, scene_path, dir, report, log);
+    else report.reference_source = args.reference;
     WriteOptions display;
     display.exposure = base.exposure;
     write_image((dir / report.reference_png).string(), reference, display);
