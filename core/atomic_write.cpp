@@ -33,33 +33,35 @@ std::string write_all(int fd, std::string_view bytes) {
   return {};
 }
 
-/// The file a path names, following symbolic links (a relative link from the link's own folder), as `>` in a
-/// shell does: renaming over the link itself would replace it with a file and leave its target as it was. *why is
-/// set for a loop of links.
-std::string follow_links(std::string path, std::string& why) {
-  for (int hops = 0; hops < 40; ++hops) {
-    struct stat st {};
-    if (::lstat(path.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return path;
-    std::string target(4096, '\0');
-    const ssize_t n = ::readlink(path.c_str(), target.data(), target.size());
-    if (n < 0 || static_cast<size_t>(n) >= target.size()) return path;  // unreadable: let the write say why
-    target.resize(static_cast<size_t>(n));
-    const size_t slash = path.rfind('/');
-    path = target.front() == '/' || slash == std::string::npos ? target : path.substr(0, slash + 1) + target;
-  }
-  why = "cannot create the file: " + reason(ELOOP);
-  return path;
-}
-
 }  // namespace
 
+std::string written_file(const std::string& path, bool* loop) {
+  std::string p = path;
+  if (loop) *loop = false;
+  for (int hops = 0; hops < 40; ++hops) {
+    struct stat st {};
+    if (::lstat(p.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return p;
+    std::string target(4096, '\0');
+    const ssize_t n = ::readlink(p.c_str(), target.data(), target.size());
+    if (n <= 0 || static_cast<size_t>(n) >= target.size()) return p;  // unreadable: let the write say why
+    target.resize(static_cast<size_t>(n));
+    const size_t slash = p.rfind('/');
+    p = target.front() == '/' || slash == std::string::npos ? target : p.substr(0, slash + 1) + target;
+  }
+  if (loop) *loop = true;
+  return p;
+}
+
 std::string write_file_atomically(const std::string& link_or_path, std::string_view bytes) {
+  bool loop = false;
+  const std::string path = written_file(link_or_path, &loop);
+  if (loop) return "cannot create the file: " + reason(ELOOP);
+  // Through a link, the reason names the file actually written.
+  const std::string via = path == link_or_path ? "" : " (writing " + path + ", where the link leads)";
   std::string why;
-  const std::string path = follow_links(link_or_path, why);
-  if (!why.empty()) return why;
   const std::string tmp = path + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) return "cannot create the file: " + reason(errno);
+  if (fd < 0) return "cannot create the file: " + reason(errno) + via;
   why = write_all(fd, bytes);
   // close() reports what a network or quota-limited file system only learns when the data leaves the cache. On
   // Linux the descriptor is released even when close fails, so it is never retried.
@@ -67,7 +69,7 @@ std::string write_file_atomically(const std::string& link_or_path, std::string_v
   if (why.empty() && std::rename(tmp.c_str(), path.c_str()) != 0)
     why = "cannot rename the finished temporary file into place: " + reason(errno);
   if (!why.empty()) ::unlink(tmp.c_str());
-  return why;
+  return why.empty() ? why : why + via;
 }
 
 }  // namespace lumis

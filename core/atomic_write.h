@@ -14,4 +14,8 @@ namespace lumis {
 /// No space left on device (after 204800 of 615084 bytes)"), with the temporary file removed.
 std::string write_file_atomically(const std::string& path, std::string_view bytes);
 
+/// The file a write to `path` replaces: `path` itself, or the file its chain of symbolic links leads to (a relative
+/// link read from the link's own folder). *loop (when given) is set for a loop of links (40 hops).
+std::string written_file(const std::string& path, bool* loop = nullptr);
+
 }  // namespace lumis

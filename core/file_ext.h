@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <string>
 
+#include "core/atomic_write.h"
+
 namespace lumis {
 
 /// The extension of path, dot included, in lower case ("out/Room.GLB" -> ".glb"; "" when there is none).
@@ -30,12 +32,17 @@ inline std::string output_file_problem(const std::string& path) {
   if (path.empty()) return "empty output file name";
   if (fs::is_directory(path, ec))
     return "is a folder; give an image file name, e.g. " + (fs::path(path) / "out.png").string();
-  const fs::path parent = fs::path(path).parent_path();
+  // A symbolic link is written through (core/atomic_write.h): its target's folder is the one that must be writable.
+  bool loop = false;
+  const std::string file = written_file(path, &loop);
+  if (loop) return "is a loop of symbolic links";
+  const std::string via = file == path ? "" : "links to " + file + ", but ";
+  const fs::path parent = fs::path(file).parent_path();
   const std::string folder = parent.empty() ? "." : parent.string();
-  if (!fs::exists(folder, ec)) return "the folder " + folder + " does not exist";
-  if (!fs::is_directory(folder, ec)) return folder + " is not a folder";
+  if (!fs::exists(folder, ec)) return via + "the folder " + folder + " does not exist";
+  if (!fs::is_directory(folder, ec)) return via + folder + " is not a folder";
   if (::access(folder.c_str(), W_OK) != 0)
-    return "cannot write in the folder " + folder + " (" + std::strerror(errno) + ")";
+    return via + "cannot write in the folder " + folder + " (" + std::strerror(errno) + ")";
   return "";
 }
 

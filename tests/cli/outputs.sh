@@ -31,6 +31,15 @@ touch "$T/file"
 quick 2 "$LUMIS" "${LONG[@]}" -o "$T/file/out.png"
 has "$T/file is not a folder"
 [ -z "$(ls -A "$T/dir")" ] || fail "files left in $T/dir: $(ls -A "$T/dir")"
+# -o through a symbolic link is checked where the link leads (the render is written there): a link into a missing
+# folder once passed this check and failed only after the whole render; a loop of links fails too.
+ln -s ../no-such-folder/x.png "$T/dir/latest.png"
+quick 2 "$LUMIS" "${LONG[@]}" -o "$T/dir/latest.png"
+has "$T/dir/latest.png: links to $T/dir/../no-such-folder/x.png, but the folder $T/dir/../no-such-folder does not exist"
+ln -s loop-b "$T/loop-a" && ln -s loop-a "$T/loop-b"
+quick 2 "$LUMIS" "${LONG[@]}" -o "$T/loop-a"
+has "$T/loop-a: is a loop of symbolic links"
+rm "$T/dir/latest.png"
 
 # AOV channels exist only in EXR files: asked for with a PNG, a usage error before rendering.
 quick 2 "$LUMIS" "${LONG[@]}" --aov-normal -o "$T/aov.png"

@@ -61,9 +61,19 @@ TEST_F(AtomicWrite, ASymbolicLinkIsWrittenThrough) {
   fs::create_symlink("renders/0043.png", file("next.png"));  // dangling
   EXPECT_EQ(write_file_atomically(file("next.png"), "first"), "");
   EXPECT_EQ(content("renders/0043.png"), "first");
+  EXPECT_EQ(written_file(file("chain.png")), file("renders/0042.png"));  // the path the checks look at
+  EXPECT_EQ(written_file(file("renders/0042.png")), file("renders/0042.png"));
   fs::create_symlink("loop-b", file("loop-a"));
   fs::create_symlink("loop-a", file("loop-b"));
+  bool loop = false;
+  written_file(file("loop-a"), &loop);
+  EXPECT_TRUE(loop);
   EXPECT_NE(write_file_atomically(file("loop-a"), "x"), "");
+  // A link into a missing folder: the reason names where the link leads.
+  fs::create_symlink("nowhere/x.png", file("lost.png"));
+  EXPECT_NE(write_file_atomically(file("lost.png"), "x").find("(writing " + file("nowhere/x.png") + ", where the link "
+                                                                "leads)"),
+            std::string::npos);
   for (const auto& e : fs::directory_iterator(file("renders")))
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 }
