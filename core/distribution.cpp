@@ -22,14 +22,23 @@ Distribution1D::Distribution1D(std::span<const float> f) : func_(f.begin(), f.en
   // The CDF on the sampler's grid (multiples of 2^-24, exact in float): a cell's probability is then the width of
   // its interval exactly, for u on that grid or uniform on [0, 1), and pmf() returns that width. The running sum is
   // rounded to the grid, but every cell that can be drawn (f > 0; all of them when f is all zero) keeps at least one
-  // step, while there are at most 2^24 such cells: one far below 2^-24 of the total was never drawn, so its light
-  // was lost. The cells after it give the step back as soon as they are wide enough.
+  // step: one far below 2^-24 of the total was never drawn, so its light was lost. The cells after it give the step
+  // back as soon as they are wide enough. The steps so lent come from the other cells, so the rule holds only while
+  // they are few (at most 2^18, 1/64 of the total): a million cells each below a step would otherwise take most of
+  // the probability from the cells that carry the weight. Beyond that, cells under half a step are not drawn, and
+  // pmf() says 0 for them, so MIS still counts them through its other strategies.
   const bool weighted = sum[n] > 0;
   const auto drawable = [&](size_t i) { return !weighted || func_[i] > 0; };
-  size_t remaining = 0;
-  for (size_t i = 0; i < n; ++i) remaining += drawable(i);
   constexpr uint64_t kSteps = uint64_t{1} << 24;
-  const bool one_each = remaining <= kSteps;
+  size_t remaining = 0;
+  double lent = 0;  // steps the rule adds to cells narrower than one step
+  for (size_t i = 0; i < n; ++i) {
+    if (!drawable(i)) continue;
+    ++remaining;
+    const double steps = weighted ? static_cast<double>(func_[i]) / n / sum[n] * kSteps : double(kSteps) / n;
+    lent += std::max(0.0, 1.0 - steps);
+  }
+  const bool one_each = remaining <= kSteps && lent <= double(kSteps >> 6);
   cdf_.resize(n + 1);
   uint64_t c = 0;  // steps below cell i
   for (size_t i = 0; i < n; ++i) {

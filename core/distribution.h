@@ -10,9 +10,9 @@
 namespace lumis {
 
 /// Piecewise-constant density on [0, 1) with n equal cells of weight f[i] >= 0 (all-zero input -> uniform).
-/// Sampling is O(log n) by binary search of the CDF. The CDF lies on the sampler's 2^-24 grid: cell i is drawn with
-/// probability pmf(i), which is f[i] / sum f to within 2^-24 and never 0 for f[i] > 0 (up to 2^24 such cells);
-/// pmf() and the densities are what sampling realises, exactly.
+/// Sampling is O(log n) by binary search of the CDF. The CDF lies on the sampler's 2^-24 grid, and pmf() and the
+/// densities are what sampling realises, exactly. pmf(i) is f[i] / sum f rounded to the grid, except that a cell with
+/// f[i] > 0 narrower than one step is lent one, so that it can be drawn, while the steps lent stay under 2^18 (1/64).
 class Distribution1D {
  public:
   Distribution1D() = default;

@@ -170,6 +170,37 @@ TEST(Distribution1D, LargeTableBinarySearch) {
   }
 }
 
+// The steps lent to cells narrower than one step come from the cells that carry the weight, so they are limited to
+// 2^18 (1/64 of the total). One cell of 99 % beside 2^20 - 1 cells of 1e-8 each: lending each a step once cut the big
+// cell to 0.9375; now it keeps 0.99 to within a step, the tiny cells get steps only where their running sum reaches
+// them, and every count over all 2^24 values of u is still pmf x 2^24. Under the limit (2^17 tiny cells) each is
+// drawable and the big cell gives up at most 2^17 steps. Deterministic.
+TEST(Distribution1D, StepsLentToTinyCellsAreLimited) {
+  const auto check_realised = [](const Distribution1D& d) {
+    std::vector<uint32_t> count(d.size(), 0);
+    for (uint32_t k = 0; k < (1u << 24); ++k) ++count[d.sample_discrete(static_cast<float>(k) * 0x1p-24f)];
+    int wrong = 0;
+    for (size_t i = 0; i < d.size(); ++i) wrong += static_cast<double>(count[i]) != std::ldexp(double(d.pmf(i)), 24);
+    return wrong;
+  };
+  for (const size_t n : {size_t{1} << 20, size_t{1} << 17}) {
+    std::vector<float> f(n, 1e-8f);
+    f[0] = 0.99f / 0.01f * 1e-8f * static_cast<float>(n - 1);  // 99 % of the total
+    const Distribution1D d(f);
+    const double tiny = 1e-8f, share = double(f[0]) / (double(f[0]) + tiny * double(n - 1));
+    size_t drawable = 0;
+    for (size_t i = 1; i < n; ++i) drawable += d.pmf(i) > 0;
+    if (n == (size_t{1} << 20)) {
+      EXPECT_NEAR(d.pmf(0), share, 0x1p-23) << "the big cell lost its weight to the tiny ones";
+      EXPECT_LT(drawable, n / 4) << "tiny cells were lent steps beyond the limit";
+    } else {
+      EXPECT_EQ(drawable, n - 1) << "a tiny cell cannot be drawn under the limit";
+      EXPECT_GE(d.pmf(0), share - double(n) * 0x1p-24);
+    }
+    EXPECT_EQ(check_realised(d), 0) << "cells whose count is not pmf x 2^24, table of " << n;
+  }
+}
+
 // For du near 1, (i + du) / n rounds to the next cell's edge in float; the point must stay in the cell whose density
 // is returned. 4096 cells of random weight, u at and just below every cell's upper CDF edge, and 10^6 random u.
 // Deterministic.
