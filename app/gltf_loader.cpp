@@ -1,6 +1,7 @@
 // glTF file parsing (through tinygltf), validation of the node hierarchy, and flattening of the default scene into
 // world-space meshes. Accessors are in gltf_accessor.cpp, materials in gltf_materials.cpp, primitives in
 // gltf_primitives.cpp.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -208,8 +209,13 @@ Mat4 local_transform(const Context& ctx, const tinygltf::Node& node, const std::
     }
     if (!node.rotation.empty()) {
       const auto r = vec(node.rotation, 4, "rotation");
-      // Normalised in double before the float conversion (1e-50 is 0 in float); length 0 is no rotation at all.
-      const double len = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
+      // Normalised in double before the float conversion (1e-50 is 0 in float), scaled by the largest component
+      // first so that the squares of 1e200 do not overflow; length 0 is no rotation at all.
+      const double big = std::max({std::abs(r[0]), std::abs(r[1]), std::abs(r[2]), std::abs(r[3])});
+      const double len = big > 0 && std::isfinite(big)
+                             ? big * std::sqrt((r[0] / big) * (r[0] / big) + (r[1] / big) * (r[1] / big) +
+                                               (r[2] / big) * (r[2] / big) + (r[3] / big) * (r[3] / big))
+                             : big;
       if (!(len > 0) || !std::isfinite(len)) {
         char found[32];
         std::snprintf(found, sizeof found, "%g", len);

@@ -221,7 +221,7 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadO
     if (!(height >= 0.5 && height < kMaxResolution + 0.5) && !options.size_given)  // the image lacks its shape
       std::cerr << path << ": warning: " << (camera_at.empty() ? std::string("the camera") : camera_at)
                 << "'s aspectRatio " << *gltf.camera_aspect << " needs an image of " << kGltfImageWidth << " x "
-                << height << " pixels; rendering " << kGltfImageWidth << " x " << scene->settings.height
+                << height << " pixels; its height is clamped to 1..." << kMaxResolution
                 << " (give --width and --height for another shape)\n";
   }
   JsonSceneBuilder builder(*scene, path);

@@ -327,6 +327,8 @@ def empty_instancing(d):
 
 case("gltf_instancing_count_zero", ".gltf", embed(*variant(empty_instancing)),
      "expected at least 1 element (used by nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.TRANSLATION)")
+# A valid rotation whose components' squares overflow double (1e200): normalised, not rejected. Renders (exit 0).
+case("gltf_rotation_huge", ".gltf", embed(*variant(set_path(["nodes", 0, "rotation"], [1e200, 0, 0, 1e200]))), "", 0)
 case("gltf_rotation_zero", ".gltf", embed(*variant(set_path(["nodes", 0, "rotation"], [0, 0, 0, 0]))),
      "nodes[0].rotation: expected a unit quaternion (x, y, z, w), found one of length 0")
 
