@@ -91,7 +91,8 @@ int run_compare(const CompareArgs& args) {
         if (fs::equivalent(dir / f, args.reference, ec))
           throw UsageError("compare: --reference " + args.reference + " is the " + f + " this run writes in " +
                            dir.string() + "; copy it elsewhere or give another -o");
-    scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera, args.overrides.width && args.overrides.height});
+    scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera,
+                                                    args.overrides.width && args.overrides.height});
     apply_overrides(args.overrides, *scene);
     scene->update_light_selector();
     if (!args.crop.empty()) crop = parse_crop(args.crop, scene->settings.width, scene->settings.height);
@@ -100,8 +101,8 @@ int run_compare(const CompareArgs& args) {
     const int w = scene->settings.width, h = scene->settings.height;
     const uint64_t pixels = uint64_t(w) * uint64_t(h), n = names.size();
     const uint64_t need = render_memory_estimate(w, h, 6) + pixels * (12 + 16 * n + 24 * (n + 1));
-    if (const std::string problem = memory_problem(need, w, h, "compare of " + std::to_string(n) + (n == 1 ? " variant" : " variants"),
-                                                   "films, images, error maps and montage");
+    const std::string what = "compare of " + std::to_string(n) + (n == 1 ? " variant" : " variants");
+    if (const std::string problem = memory_problem(need, w, h, what, "films, images, error maps and montage");
         !problem.empty())
       throw std::runtime_error(problem);
   } catch (const SceneError& e) {

@@ -1,4 +1,5 @@
-// Rendering for `lumis compare`: one variant at a time, and the nee_mis reference with its cache (app/compare_internal.h).
+// Rendering for `lumis compare`: one variant at a time, and the nee_mis reference with its cache
+// (app/compare_internal.h).
 #include <algorithm>
 #include <fstream>
 #include <memory>

@@ -191,7 +191,8 @@ Packed pack_accessor(const Context& ctx, int index, const std::string& where, co
     // In subtractions that cannot wrap: a byteOffset near 2^64 made the sum small and let the copy below read
     // outside the buffer.
     const uint64_t room = a.byteOffset <= size ? size - a.byteOffset : 0;
-    if (p.count > 0 && (a.byteOffset > size || static_cast<uint64_t>(p.elem_size) > room || (p.count - 1) > (room - p.elem_size) / stride)) {
+    const uint64_t elem = static_cast<uint64_t>(p.elem_size);
+    if (p.count > 0 && (a.byteOffset > size || elem > room || (p.count - 1) > (room - elem) / stride)) {
       char need[48];  // the bytes asked for, which may exceed 2^64
       std::snprintf(need, sizeof need, "%.0Lf",
                     static_cast<long double>(a.byteOffset) + static_cast<long double>(stride) * (p.count - 1) +

@@ -219,7 +219,8 @@ Mat4 local_transform(const Context& ctx, const tinygltf::Node& node, const std::
       if (!(len > 0) || !std::isfinite(len)) {
         char found[32];
         std::snprintf(found, sizeof found, "%g", len);
-        ctx.fail(at + ".rotation", std::string("expected a unit quaternion (x, y, z, w), found one of length ") + found);
+        ctx.fail(at + ".rotation",
+                 std::string("expected a unit quaternion (x, y, z, w), found one of length ") + found);
       }
       m = m * Mat4::rotate_quaternion(
                   {float(r[0] / len), float(r[1] / len), float(r[2] / len), float(r[3] / len)});

@@ -21,7 +21,8 @@ Mat4 Mat4::rotate_quaternion(Vec4 q) {
   const double qx = q.x, qy = q.y, qz = q.z, qw = q.w;
   const double n = std::sqrt(qx * qx + qy * qy + qz * qz + qw * qw);
   if (n > 0 && std::isfinite(n))
-    q = {static_cast<float>(qx / n), static_cast<float>(qy / n), static_cast<float>(qz / n), static_cast<float>(qw / n)};
+    q = {static_cast<float>(qx / n), static_cast<float>(qy / n), static_cast<float>(qz / n),
+         static_cast<float>(qw / n)};
   const float x = q.x, y = q.y, z = q.z, w = q.w;
   Mat4 r;
   r.m[0][0] = 1 - 2 * (y * y + z * z); r.m[0][1] = 2 * (x * y - z * w);     r.m[0][2] = 2 * (x * z + y * w);
