@@ -57,7 +57,8 @@ CLI::Validator number_in(double lo, double hi, const std::string& expected) {
 
 /// The render options that override the scene file (render, compare and bench).
 void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
-  cmd.add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1u, 1u << 30));
+  cmd.add_option("--spp", o.spp, "Samples per pixel (given alone, it overrides a scene file's time budget)")
+      ->check(CLI::Range(1u, 1u << 30));
   cmd.add_option("--integrator", o.integrator, "uniform | bsdf | light | mis | nee_mis");
   cmd.add_option("--max-depth", o.max_depth, "Scattering vertices per path (1 = direct lighting only)")
       ->check(CLI::Range(1, 1024));
