@@ -1,4 +1,5 @@
-// Shared pieces of the glTF loader (gltf_loader.cpp, gltf_accessor.cpp, gltf_materials.cpp). Not a public API.
+// Shared pieces of the glTF loader (gltf_loader.cpp, gltf_accessor.cpp, gltf_materials.cpp, gltf_nodes.cpp,
+// gltf_primitives.cpp). Not a public API.
 #pragma once
 
 #include <tiny_gltf.h>
@@ -14,6 +15,7 @@
 #include "app/gltf_loader.h"
 #include "app/scene_error.h"
 #include "core/image.h"
+#include "core/transform.h"
 
 namespace lumis::gltf {
 
@@ -105,6 +107,17 @@ PlusUris plus_uris(const Context& ctx, const std::string& text);
 
 /// FsCallbacks::ExpandFilePath (user data: a PlusUris): `path` with a file name tinygltf misread put right.
 std::string expand_plus_uri(const std::string& path, void* plus_uris);
+
+// --- nodes (gltf_nodes.cpp) ---
+
+/// A node's transform in its parent's space: `matrix`, or translation x rotation x scale (rotation normalised).
+Mat4 local_transform(const Context& ctx, const tinygltf::Node& node, const std::string& at);
+/// EXT_mesh_gpu_instancing: one matrix per instance (T R S, in the node's space), or none when absent.
+std::vector<Mat4> gpu_instances(Context& ctx, AccessorCache& acc, const tinygltf::Node& node, const std::string& at);
+/// Adds the node's perspective camera (world transform `world`) to scene.cameras (the first is the default);
+/// counts orthographic ones, which lumis does not render.
+void set_camera(Context& ctx, GltfScene& scene, const tinygltf::Node& node, const Mat4& world, const std::string& at,
+                int& orthographic);
 
 // --- materials and textures (gltf_materials.cpp) ---
 
