@@ -26,7 +26,7 @@ struct RenderProgress {
   double fraction() const {
     const double by_samples = samples_total ? static_cast<double>(samples_done) / samples_total : 1.0;
     const double by_time = time_budget > 0 ? elapsed / time_budget : 0.0;
-    return by_samples > by_time ? std::min(by_samples, 1.0) : std::min(by_time, 1.0);
+    return std::min(std::max(by_samples, by_time), 1.0);
   }
 };
 
