@@ -228,30 +228,4 @@ RawThroughput RawBench::measure() {
   return out;
 }
 
-double median_of(std::vector<double> values) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  const size_t m = values.size() / 2;
-  return values.size() % 2 ? values[m] : 0.5 * (values[m - 1] + values[m]);
-}
-
-RawThroughput median_raw(const std::vector<RawThroughput>& runs) {
-  if (runs.empty()) return {};
-  RawThroughput out = runs.back();
-  auto med = [&](Rate RawThroughput::*field) {
-    std::vector<double> w, c;
-    for (const RawThroughput& r : runs) {
-      w.push_back((r.*field).wall);
-      c.push_back((r.*field).cpu);
-    }
-    out.*field = {median_of(w), median_of(c)};
-  };
-  for (Rate RawThroughput::*f : {&RawThroughput::camera1, &RawThroughput::camera16, &RawThroughput::bounce1,
-                                 &RawThroughput::bounce16, &RawThroughput::shadow1, &RawThroughput::shadow16,
-                                 &RawThroughput::bounce1_shuffled, &RawThroughput::shadow1_shuffled,
-                                 &RawThroughput::light_query, &RawThroughput::bounce_lumis})
-    med(f);
-  return out;
-}
-
 }  // namespace lumis
