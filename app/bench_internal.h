@@ -1,5 +1,6 @@
 // Shared by the files of `lumis bench` (bench.cpp runs the scenes, bench_scene_run.cpp measures one, bench_measure.cpp
-// turns repetitions into medians and ratios); not part of the app's interface.
+// turns repetitions into medians and ratios, bench_targets.cpp evaluates the targets for bench_report.cpp's table and
+// bench_report_json.cpp's JSON); not part of the app's interface.
 #pragma once
 
 #include <chrono>
@@ -35,5 +36,38 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
 /// the same repetition, so that slow drifts of the machine's load cancel.
 BenchVariantResult aggregate(const std::vector<BenchVariantResult>& runs, const std::vector<RawThroughput>& raws,
                              const RawThroughput& raw_median, const std::vector<Replays>& replays);
+
+/// The parts of `lumis bench`'s report shared by its table and its JSON (app/bench_targets.cpp).
+namespace bench_detail {
+
+/// The rays/s target's ratio (issue 7).
+constexpr double kTargetRatio = 0.7;
+
+/// One of issue 7's targets on one scene: a measured value against its bound.
+struct Target {
+  std::string name, scene;
+  double value = 0, bound = 0;
+  bool at_least = true;  ///< value >= bound (else value < bound)
+  bool met() const { return at_least ? value >= bound : value < bound; }
+};
+
+/// The variant named `name` in s, or nullptr.
+const BenchVariantResult* find_variant(const SceneResult& s, const std::string& name);
+/// Thread scaling: speedup over one thread, per thread (0 when not measured).
+double efficiency(const SceneResult& s);
+/// Every target that the report's scenes measure, in the order of the table.
+std::vector<Target> targets(const BenchReport& r);
+
+/// What the rays/s target leaves lumis's own code, in CPU seconds per sample: the render's (all threads), Embree's
+/// part of it (the replay's share, embree_share), lumis's part, and lumis's part at ratio kTargetRatio (the same
+/// Embree time in kTargetRatio / ratio of the render's time; negative: out of reach even with lumis at zero).
+/// All 0 when the render, its CPU time or its replay is missing.
+struct Budget {
+  double per_sample = 0, embree = 0, lumis = 0, lumis_at_target = 0;
+};
+/// The budget of one variant's render.
+Budget budget(const BenchVariantResult& v);
+
+}  // namespace bench_detail
 
 }  // namespace lumis

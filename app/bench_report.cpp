@@ -1,66 +1,15 @@
-// `lumis bench` output: the table on stdout and the same figures as JSON, with the issue's targets evaluated
-// (reported, never asserted: the machine is shared and noisy).
+// `lumis bench` output: the table on stdout, with the issue's targets evaluated (reported, never asserted: the
+// machine is shared and noisy). The same figures as JSON: app/bench_report_json.cpp.
 #include <cstdio>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
-#include "app/bench.h"
+#include "app/bench_internal.h"
 
 namespace lumis {
 
 namespace {
 
-using Json = nlohmann::json;
-
-/// The rays/s target's ratio (issue 7).
-constexpr double kTargetRatio = 0.7;
-
-struct Target {
-  std::string name, scene;
-  double value = 0, bound = 0;
-  bool at_least = true;  ///< value >= bound (else value < bound)
-  bool met() const { return at_least ? value >= bound : value < bound; }
-};
-
-const BenchVariantResult* find_variant(const SceneResult& s, const std::string& name) {
-  for (const BenchVariantResult& v : s.variants)
-    if (v.integrator == name) return &v;
-  return nullptr;
-}
-
-double efficiency(const SceneResult& s) {
-  return s.samples_per_s_1 > 0 && s.threads > 0 ? s.samples_per_s_n / s.samples_per_s_1 / s.threads : 0;
-}
-
-std::vector<Target> targets(const BenchReport& r) {
-  std::vector<Target> out;
-  for (const SceneResult& s : r.scenes) {
-    if (!s.error.empty()) continue;
-    const bool large = s.name == "large";
-    if (s.name == "cornell-sphere" || large)
-      if (const BenchVariantResult* v = find_variant(s, "nee_mis"))
-      {
-        out.push_back({"nee_mis rays/s over raw Embree rays/s for the same mix", s.name, v->ratio, kTargetRatio,
-                       true});
-        out.push_back({"  same, against the render's own rays replayed (own)", s.name, v->ratio_own, kTargetRatio,
-                       true});
-        out.push_back({"  same, against the raw rays in a random order (shuffled)", s.name, v->ratio_shuffled,
-                       kTargetRatio, true});
-      }
-    if (s.threads > 1 && s.samples_per_s_1 > 0)
-    {
-      out.push_back({"thread scaling: speedup / threads (" + s.scaling_integrator + ")", s.name, efficiency(s),
-                     0.9, true});
-      out.push_back({"  same, per CPU-second (proxy on a busy machine)", s.name, s.cpu_efficiency, 0.9, true});
-    }
-    if (large && s.triangles >= 1'000'000) {
-      out.push_back({"load + BVH build of the 1M-triangle glTF, seconds", s.name, s.load_seconds, 1.5, false});
-      out.push_back({"peak memory, bytes per triangle", s.name, s.bytes_per_triangle, 250, false});
-    }
-  }
-  return out;
-}
+using namespace bench_detail;
 
 double mega(double v) { return v * 1e-6; }
 
@@ -73,23 +22,6 @@ std::string count(double v) {
 }
 
 double pct(uint64_t part, uint64_t whole) { return whole ? 100.0 * double(part) / double(whole) : 0; }
-
-/// What the rays/s target leaves lumis's own code, in CPU seconds per sample: the render's (all threads), Embree's
-/// part of it (the replay's share, embree_share), lumis's part, and lumis's part at ratio kTargetRatio (the same
-/// Embree time in kTargetRatio / ratio of the render's time; negative: out of reach even with lumis at zero).
-/// All 0 when the render, its CPU time or its replay is missing.
-struct Budget {
-  double per_sample = 0, embree = 0, lumis = 0, lumis_at_target = 0;
-};
-Budget budget(const BenchVariantResult& v) {
-  Budget b;
-  if (v.samples == 0 || !(v.cpu_seconds > 0) || !(v.ratio > 0) || !(v.embree_share > 0)) return b;
-  b.per_sample = v.cpu_seconds / double(v.samples);
-  b.embree = v.embree_share * b.per_sample;
-  b.lumis = b.per_sample - b.embree;
-  b.lumis_at_target = b.per_sample * v.ratio / kTargetRatio - b.embree;
-  return b;
-}
 
 }  // namespace
 
@@ -210,106 +142,6 @@ void print_bench_report(const BenchReport& r) {
       std::printf("%.2f (%.0f %% less time)\n", b.lumis_at_target * 1e6, 100 * (1 - b.lumis_at_target / b.lumis));
     else std::printf("%.2f (met)\n", b.lumis_at_target * 1e6);
   }
-}
-
-std::string bench_report_json(const BenchReport& r) {
-  Json doc;
-  doc["machine"] = {{"cpu", r.cpu}, {"cores", r.cores}, {"load_average_start", r.load_average_start},
-                    {"load_average_end", r.load_average_end}};
-  doc["settings"] = {{"threads", r.threads}, {"repeat", r.repeat}, {"quick", r.quick}};
-  Json scenes = Json::array();
-  for (const SceneResult& s : r.scenes) {
-    Json j = {{"name", s.name}, {"path", s.path}};
-    if (!s.error.empty()) {
-      j["error"] = s.error;
-      scenes.push_back(j);
-      continue;
-    }
-    j["triangles"] = s.triangles;
-    j["lights"] = s.lights;
-    j["width"] = s.width;
-    j["height"] = s.height;
-    j["spp"] = s.spp;
-    j["file_bytes"] = s.file_bytes;
-    if (s.generate_seconds > 0) j["generate_seconds"] = s.generate_seconds;
-    j["load_seconds"] = s.load_seconds;
-    j["bvh_build_seconds"] = s.bvh_seconds;
-    j["memory"] = {{"baseline_rss_bytes", s.baseline_rss}, {"peak_rss_bytes", s.peak_rss},
-                   {"peak_reset_per_scene", s.peak_reset}, {"bytes_per_triangle", s.bytes_per_triangle}};
-    const RawThroughput& w = s.raw;
-    j["raw_rays_per_s"] = {{"camera_intersect1", w.camera1.wall},  {"camera_intersect16", w.camera16.wall},
-                           {"bounce_intersect1", w.bounce1.wall},  {"bounce_intersect16", w.bounce16.wall},
-                           {"shadow_occluded1", w.shadow1.wall},   {"shadow_occluded16", w.shadow16.wall},
-                           {"light_query", w.light_query.wall},    {"camera_rays", w.camera_rays},
-                           {"bounce_geometry_intersect", w.bounce_lumis.wall},
-                           {"bounce_rays", w.bounce_rays},    {"shadow_rays", w.shadow_rays},
-                           {"camera_hit_fraction", w.camera_hit_fraction},
-                           {"bounce_hit_fraction", w.bounce_hit_fraction},
-                           {"shadow_occluded_fraction", w.shadow_occluded_fraction}};
-    j["raw_rays_per_s"]["bounce_intersect1_shuffled"] = w.bounce1_shuffled.wall;
-    j["raw_rays_per_s"]["shadow_occluded1_shuffled"] = w.shadow1_shuffled.wall;
-    j["own_rays_per_s"] = {{"integrator", s.scaling_integrator},
-                           {"camera", s.own_rays_per_s[int(RayKind::Camera)]},
-                           {"bounce", s.own_rays_per_s[int(RayKind::Bounce)]},
-                           {"shadow", s.own_rays_per_s[int(RayKind::Shadow)]},
-                           {"light_query", s.own_rays_per_s[int(RayKind::LightQuery)]}};
-    j["raw_rays_per_cpu_s"] = {{"camera_intersect1", w.camera1.cpu},  {"camera_intersect16", w.camera16.cpu},
-                               {"bounce_intersect1", w.bounce1.cpu},  {"bounce_intersect16", w.bounce16.cpu},
-                               {"shadow_occluded1", w.shadow1.cpu},   {"shadow_occluded16", w.shadow16.cpu},
-                               {"light_query", w.light_query.cpu},
-                               {"bounce_geometry_intersect", w.bounce_lumis.cpu}};
-    Json vs = Json::array();
-    for (const BenchVariantResult& v : s.variants)
-      vs.push_back({{"integrator", v.integrator},
-                    {"seconds", v.seconds},
-                    {"cpu_seconds", v.cpu_seconds},
-                    {"samples", v.samples},
-                    {"rays", v.rays},
-                    {"rays_by_kind",
-                     {{"camera", v.camera_rays}, {"bounce", v.bounce_rays}, {"shadow", v.shadow_rays},
-                      {"light_query", v.light_queries}}},
-                    {"samples_per_s", v.samples_per_s},
-                    {"rays_per_s", v.rays_per_s},
-                    {"raw_mix_rays_per_s", v.raw_mix_rays_per_s},
-                    {"raw_mix_packet_rays_per_s", v.raw_mix_packet_rays_per_s},
-                    {"ratio_to_raw", v.ratio},
-                    {"ratio_to_raw_packets", v.ratio_packets},
-                    {"ratio_to_raw_cpu", v.ratio_cpu},
-                    {"ratio_to_raw_packets_cpu", v.ratio_cpu_packets},
-                    {"ratio_to_own_rays", v.ratio_own},
-                    {"ratio_to_raw_shuffled", v.ratio_shuffled},
-                    {"embree_share", v.embree_share},
-                    {"replay_rays", v.replay_rays},
-                    {"budget_cpu_s_per_sample",
-                     [&v] {
-                       const Budget b = budget(v);
-                       return Json{{"render", b.per_sample}, {"embree", b.embree}, {"lumis", b.lumis},
-                                   {"lumis_at_target", b.lumis_at_target}, {"target_ratio", kTargetRatio}};
-                     }()}});
-    j["variants"] = vs;
-    j["thread_scaling"] = {{"integrator", s.scaling_integrator},
-                           {"threads", s.threads},
-                           {"samples_per_s_1", s.samples_per_s_1},
-                           {"samples_per_s_n", s.samples_per_s_n},
-                           {"speedup", s.samples_per_s_1 > 0 ? s.samples_per_s_n / s.samples_per_s_1 : 0.0},
-                           {"efficiency", efficiency(s)},
-                           {"cpu_utilisation", s.cpu_utilisation},
-                           {"cpu_efficiency", s.cpu_efficiency}};
-    for (const auto& [key, g] : {std::pair{"camera_packets", s.camera_packets}, {"shadow_packets", s.shadow_packets},
-                                 {"bounce_packets", s.bounce_packets}})
-      j[key] = {{"integrator", s.scaling_integrator},
-                {"samples_per_s_packets", s.samples_per_s_n},
-                {"samples_per_s_single_rays", g.samples_per_s_without},
-                {"speedup_cpu", g.speedup_cpu}};
-    scenes.push_back(j);
-  }
-  doc["scenes"] = scenes;
-  Json ts = Json::array();
-  for (const Target& t : targets(r))
-    ts.push_back({{"name", t.name}, {"scene", t.scene}, {"value", t.value}, {"bound", t.bound},
-                  {"at_least", t.at_least}, {"met", t.met()}});
-  doc["targets"] = ts;
-  return doc.dump(2);
 }
 
 }  // namespace lumis
