@@ -23,6 +23,9 @@ using Json = nlohmann::ordered_json;
 /// location is the JSON pointer of the second occurrence).
 Json parse_json_text(const std::string& text, const std::string& file);
 
+/// A key as one token of a JSON pointer (RFC 6901: "~" becomes "~0", "/" becomes "~1").
+std::string escape_pointer_token(std::string_view key);
+
 /// "the string "abc"", "the number 3", "an array of 2 elements", ... for messages.
 std::string describe_json(const Json& value);
 
