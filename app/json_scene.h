@@ -24,6 +24,9 @@ struct MaterialEmission {
   bool emits() const { return !is_black(factor); }
 };
 
+/// A mesh's "sampling" member ("spherical_triangle", the default, or "area").
+TriangleSampling json_mesh_sampling(const JsonNode& node);
+
 class JsonSceneBuilder {
  public:
   /// file: the scene file (for messages); relative paths resolve against its folder.

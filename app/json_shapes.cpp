@@ -1,4 +1,4 @@
-// The "shapes" and "lights" sections. Emitters are geometry too: every light except the environment adds a sphere or
+// The "shapes" and "lights" sections (a "gltf" shape: app/json_gltf.cpp). Emitters are geometry too: every light except the environment adds a sphere or
 // mesh carrying its light index, so that a BSDF-sampled ray that hits it knows which light it found.
 #include "app/json_scene.h"
 
@@ -13,18 +13,11 @@ namespace lumis {
 namespace {
 
 const std::vector<std::string> kQuadSampling = {"spherical_rectangle", "area"};
-const std::vector<std::string> kMeshSampling = {"spherical_triangle", "area"};
 
 QuadSampling quad_sampling(const JsonNode& node) {
   if (!node.has("sampling")) return QuadSampling::SphericalRectangle;
   return node["sampling"].as_choice(kQuadSampling, "quad sampling") == 0 ? QuadSampling::SphericalRectangle
                                                                           : QuadSampling::Area;
-}
-
-TriangleSampling mesh_sampling(const JsonNode& node) {
-  if (!node.has("sampling")) return TriangleSampling::SphericalTriangle;
-  return node["sampling"].as_choice(kMeshSampling, "mesh sampling") == 0 ? TriangleSampling::SphericalTriangle
-                                                                          : TriangleSampling::Area;
 }
 
 struct QuadGeometry {
@@ -54,6 +47,13 @@ std::vector<Vec3> parse_points(const JsonNode& node) {
 }
 
 }  // namespace
+
+TriangleSampling json_mesh_sampling(const JsonNode& node) {
+  static const std::vector<std::string> kMeshSampling = {"spherical_triangle", "area"};
+  if (!node.has("sampling")) return TriangleSampling::SphericalTriangle;
+  return node["sampling"].as_choice(kMeshSampling, "mesh sampling") == 0 ? TriangleSampling::SphericalTriangle
+                                                                          : TriangleSampling::Area;
+}
 
 void JsonSceneBuilder::add_shape(const JsonNode& node) {
   static const std::vector<std::string> types = {"sphere", "quad", "mesh", "gltf"};
@@ -168,76 +168,7 @@ void JsonSceneBuilder::add_mesh_shape(const JsonNode& node) {
   MaterialEmission emission;
   if (auto e = node.find("emission")) emission.factor = parse_radiance(*e);
   else if (auto it = material_emission_.find(mesh.material); it != material_emission_.end()) emission = it->second;
-  add_mesh(std::move(mesh), emission, mesh_sampling(node));
-}
-
-void JsonSceneBuilder::add_gltf_shape(const JsonNode& node) {
-  node.expect_object({"type", "name", "file", "transform", "materials", "sampling"});
-  if (auto n = node.find("name")) n->as_string();  // a label for the reader: the meshes keep the file's names
-  const JsonNode file = node["file"];
-  const std::string path = resolve_path(file);
-  const std::string ext = lower_extension(path);
-  if (ext != ".gltf" && ext != ".glb")
-    file.fail("expected a .gltf or .glb file, found " + (ext.empty() ? "no extension" : "\"" + ext + "\""));
-  const Mat4 transform = node.find("transform") ? parse_transform(node["transform"]) : Mat4::identity();
-  const TriangleSampling sampling = mesh_sampling(node);
-  GltfScene gltf;
-  try {
-    gltf = load_gltf(path, transform);
-  } catch (const ImageError& e) {
-    file.fail(std::string("cannot read a texture of the glTF file: ") + e.what());
-  } catch (const SceneError& e) {
-    file.fail(std::string("in ") + e.what());  // "in model.gltf:meshes[0]...: what was wrong"
-  }
-  std::vector<int> remap(gltf.materials.size(), -1);
-  if (auto m = node.find("materials")) {
-    for (const auto& [gltf_name, target] : m->members()) {
-      bool found = false;
-      for (size_t i = 0; i < gltf.materials.size(); ++i) {
-        if (gltf.materials[i].name != gltf_name) continue;
-        remap[i] = material_reference(target);
-        found = true;
-      }
-      if (!found) {
-        std::vector<std::string> names;
-        for (const auto& gm : gltf.materials) names.push_back("\"" + gm.name + "\"");
-        target.fail("the glTF file has no material named \"" + gltf_name +
-                    "\"; its materials: " + (names.empty() ? "(none)" : join_names(names)));
-      }
-    }
-  }
-  for (const auto& w : gltf.warnings) std::cerr << path << ": warning: " << w << "\n";
-  add_gltf(gltf, remap, sampling);
-}
-
-bool JsonSceneBuilder::add_gltf(const GltfScene& gltf, const std::vector<int>& remap, TriangleSampling sampling) {
-  // Scene indices of the glTF's own materials, created on first use; the last slot is glTF's default material.
-  std::vector<int> own(gltf.materials.size() + 1, -1);
-  bool any_emitter = false;
-  for (const TriangleMesh& source : gltf.meshes) {
-    TriangleMesh mesh = source;
-    const int gi = mesh.material >= 0 && mesh.material < static_cast<int>(gltf.materials.size())
-                       ? mesh.material
-                       : static_cast<int>(gltf.materials.size());
-    MaterialEmission emission;
-    if (gi < static_cast<int>(remap.size()) && remap[gi] >= 0) {
-      mesh.material = remap[gi];
-      if (auto it = material_emission_.find(mesh.material); it != material_emission_.end()) emission = it->second;
-    } else {
-      const PbrParams params = gi < static_cast<int>(gltf.materials.size()) ? gltf.materials[gi].params : PbrParams{};
-      if (own[gi] < 0) {
-        own[gi] = static_cast<int>(scene_.materials.size());
-        scene_.materials.push_back(make_pbr_material(params));
-      }
-      mesh.material = own[gi];
-      emission = {params.emissive, params.emissive_texture, params.double_sided};
-    }
-    // A cut-out (alphaMode MASK) is on the mesh already (mesh.alpha, set by the glTF loader): it belongs to the
-    // geometry, so it stays when the shading is remapped.
-    any_emitter = any_emitter || emission.emits();
-    add_mesh(std::move(mesh), emission, sampling);
-  }
-  return any_emitter;
+  add_mesh(std::move(mesh), emission, json_mesh_sampling(node));
 }
 
 void JsonSceneBuilder::add_mesh(TriangleMesh mesh, const MaterialEmission& emission, TriangleSampling sampling) {
