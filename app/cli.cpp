@@ -39,6 +39,17 @@ const CLI::Validator kFiniteNumber(
     },
     "FINITE");
 
+/// CLI11 check for a file or name argument: an empty string (an unset shell variable, `-o ""`) is a usage error, not
+/// "not given", which would render the default scene or write the default output file.
+CLI::Validator non_empty(const std::string& expected) {
+  return CLI::Validator(
+      [expected](std::string& text) -> std::string {
+        return text.empty() ? "expected " + expected + ", found an empty string" : "";
+      },
+      "NONEMPTY");
+}
+const CLI::Validator kNonEmpty = non_empty("a file name");
+
 /// CLI11 check that a number lies in [lo, hi], with a message that says so in the option's own terms (CLI::Range
 /// prints its bounds with six decimals, or as the largest double when there is no upper bound).
 CLI::Validator number_in(double lo, double hi, const std::string& expected) {
@@ -102,16 +113,19 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
 void add_camera_option(CLI::App& cmd, RenderOverrides& o) {
   cmd.add_option("--camera", o.camera,
                  "For a glTF file: the camera to render through, by number (0 = the first, the default) or by name; "
-                 "an unknown one lists those the file has");
+                 "an unknown one lists those the file has")
+      ->check(non_empty("a camera number or name"));
 }
 
 void register_render_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene (lumis JSON, .gltf or .glb) to an image");
-  cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box, scenes/cornell-sphere.json)");
+  cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box, scenes/cornell-sphere.json)")
+      ->check(kNonEmpty);
   cmd->add_option("-o,--output", args->output,
                   "Output image: .exr (linear, with variance channels), .png/.jpg (sRGB), .hdr "
-                  "(default: <scene name>.png)");
+                  "(default: <scene name>.png)")
+      ->check(kNonEmpty);
   add_render_overrides(*cmd, args->overrides);
   add_camera_option(*cmd, args->overrides);
   cmd->add_flag("-q,--quiet", args->quiet, "No progress or summary on stderr");
@@ -155,8 +169,8 @@ void register_diff_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "diff", "Compare image A with reference B: error metrics, threshold check, z-test, heatmap (exit 0 pass, "
               "1 fail, 2 error)");
-  cmd->add_option("A", args->a, "Test image")->required();
-  cmd->add_option("B", args->b, "Reference image")->required();
+  cmd->add_option("A", args->a, "Test image")->required()->check(kNonEmpty);
+  cmd->add_option("B", args->b, "Reference image")->required()->check(kNonEmpty);
   cmd->add_option("--metric", args->metric, "Metric that --threshold applies to")
       ->check(CLI::IsMember(metric_names()))
       ->capture_default_str();
@@ -169,7 +183,8 @@ void register_diff_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--psnr-peak", args->psnr_peak, "PSNR peak: a number, or 'max' for the reference's largest value")
       ->capture_default_str();
-  cmd->add_option("--heatmap", args->heatmap, "Write a false-colour picture of the per-pixel error (PNG/EXR)");
+  cmd->add_option("--heatmap", args->heatmap, "Write a false-colour picture of the per-pixel error (PNG/EXR)")
+      ->check(kNonEmpty);
   cmd->add_flag("--json", args->json, "Print the metrics as JSON on stdout");
   cmd->add_flag("--z-test", args->z_test,
                 "Per-pixel z-test against B's variance channels (plus A's when present); fail on any rejection");
@@ -185,10 +200,11 @@ void register_compare_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "compare", "Render a scene with several integrators at equal spp (--spp) or equal time (--time) and compare "
                  "them with a reference");
-  cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box)");
-  cmd->add_option("-o,--output", args->output, "Output folder (default: compare-<scene name>)");
+  cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box)")->check(kNonEmpty);
+  cmd->add_option("-o,--output", args->output, "Output folder (default: compare-<scene name>)")->check(kNonEmpty);
   cmd->add_option("--integrators", args->integrators, "Comma-separated variants to compare")->capture_default_str();
-  cmd->add_option("--reference", args->reference, "Reference image (EXR with R, G, B) instead of rendering one");
+  cmd->add_option("--reference", args->reference, "Reference image (EXR with R, G, B) instead of rendering one")
+      ->check(kNonEmpty);
   cmd->add_option("--reference-spp", args->reference_spp,
                   "Samples per pixel of the rendered nee_mis reference (default: 16 x spp, at least 256)")
       ->check(CLI::PositiveNumber);
@@ -217,8 +233,9 @@ void register_bench_command(CLI::App& app, int& exit_code) {
       "bench", "Measure samples/s and rays/s of every integrator against Embree's raw ray throughput");
   cmd->add_option("scenes", o.scenes,
                   "Scene files, or @large for the generated 1M-triangle room (default: @large, the shipped scenes "
-                  "and the largest shared glTF models)");
-  cmd->add_option("--json", o.json_out, "Write the results as JSON to this file");
+                  "and the largest shared glTF models)")
+      ->check(kNonEmpty);
+  cmd->add_option("--json", o.json_out, "Write the results as JSON to this file")->check(kNonEmpty);
   CLI::Option* repeat = cmd->add_option("--repeat", o.repeat, "Repetitions; every figure is their median (default 3; 1 with --quick)")->check(CLI::Range(1, 100));
   cmd->add_flag("--quick", o.quick,
                 "Tiny settings (32x32, 1 spp, 1 repetition, small raw-ray batches, a 20k-triangle @large; of the "
@@ -233,7 +250,8 @@ void register_bench_command(CLI::App& app, int& exit_code) {
                   "Only write the generated large scene to this .glb (with --large-triangles) and exit")
       ->check(CLI::Validator(
           [](std::string& path) -> std::string {
-            return lower_extension(path) == ".glb" ? "" : "expected a .glb file name, found " + path;  // .GLB too
+            if (lower_extension(path) == ".glb") return "";  // .GLB too
+            return "expected a .glb file name, found " + (path.empty() ? "an empty string" : path);
           },
           "FILE.glb"));
   add_render_overrides(*cmd, o.overrides);

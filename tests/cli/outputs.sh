@@ -24,6 +24,16 @@ quick() {  # quick CODE CMD...: as expect, within 20 s (rendering first would ta
 quick 2 "$LUMIS" "${LONG[@]}" -o "$T/no-such-folder/out.png"
 has "lumis: $T/no-such-folder/out.png: the folder $T/no-such-folder does not exist"
 grep -qF ".tmp-" "$T/err" && fail "the message names a temporary file: $(cat "$T/err")"
+# An empty file or camera name (an unset shell variable) is a usage error, not "not given": it rendered the default
+# scene, or wrote <scene name>.png in the current folder over whatever was there.
+mkdir "$T/cwd"
+for args in "render|" "render|$SCENE|-o|" "render|$SCENE|--camera|" "compare|" "compare|$SCENE|-o|" \
+    "compare|$SCENE|--reference|" "diff||$T/b.exr" "diff|$T/a.exr|$T/b.exr|--heatmap|" "bench|" "bench|--json|"; do
+  IFS='|' read -r -a argv <<< "$args|"
+  (cd "$T/cwd" && quick 2 "$LUMIS" "${argv[@]}" --spp 1) || exit 1
+  has "found an empty string"
+done
+[ -z "$(ls -A "$T/cwd")" ] || fail "an empty name wrote $(ls -A "$T/cwd")"
 mkdir "$T/dir"
 quick 2 "$LUMIS" "${LONG[@]}" -o "$T/dir"
 has "$T/dir: is a folder; give an image file name"
