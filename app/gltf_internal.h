@@ -25,6 +25,7 @@ struct Context {
   std::string base_dir;  ///< folder that relative URIs resolve against
   tinygltf::Model model;
   std::vector<std::string>* warnings = nullptr;
+  std::vector<std::string>* image_files = nullptr;  ///< GltfScene::image_files
   std::set<std::string> warned;  ///< warning keys already reported (one warning per kind)
 
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {

@@ -201,6 +201,7 @@ GltfScene load_gltf(const std::string& path, const Mat4& transform) {
   ctx.file = path;
   ctx.base_dir = fs::path(path).parent_path().string();
   ctx.warnings = &scene.warnings;
+  ctx.image_files = &scene.image_files;
   if (!transform.is_finite()) ctx.fail("", "the transform given to the loader is not finite");
   parse_file(ctx, path);
   check_extensions(ctx);

@@ -2,6 +2,7 @@
 // alpha modes, samplers and KHR_texture_transform. Each (image, colour space) pair is decoded once and shared.
 #include <cmath>
 #include <cstring>
+#include <set>
 
 #include <tbb/parallel_for.h>
 
@@ -67,6 +68,10 @@ class ImageCache {
                            std::to_string(ctx_.model.images.size()) + " images)");
     auto& slot = cache_[{index, srgb}];
     if (!slot) slot = std::make_shared<const Image>(load(index, srgb));
+    // A file the image came from (decoded now or by prefetch): recorded once, here on the calling thread.
+    const tinygltf::Image& img = ctx_.model.images[index];
+    if (img.bufferView < 0 && !img.uri.empty() && recorded_.insert(index).second && ctx_.image_files)
+      ctx_.image_files->push_back(resolve_uri(ctx_, img.uri));
     return slot;
   }
 
@@ -107,6 +112,7 @@ class ImageCache {
 
   Context& ctx_;
   std::map<std::pair<int, bool>, std::shared_ptr<const Image>> cache_;
+  std::set<int> recorded_;  ///< images whose file is in ctx_.image_files
 };
 
 WrapMode wrap_mode(const Context& ctx, int v, const std::string& where) {

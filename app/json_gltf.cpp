@@ -45,6 +45,7 @@ void JsonSceneBuilder::add_gltf_shape(const JsonNode& node) {
     }
   }
   for (const auto& w : gltf.warnings) std::cerr << path << ": warning: " << w << "\n";
+  scene_.input_images.insert(scene_.input_images.end(), gltf.image_files.begin(), gltf.image_files.end());
   add_gltf(gltf, remap, sampling);
 }
 

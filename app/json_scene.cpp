@@ -33,6 +33,7 @@ Texture JsonSceneBuilder::load_texture(const JsonNode& node, bool srgb) {
     } catch (const ImageError& e) {
       node.fail(std::string("cannot read image: ") + e.what());
     }
+    scene_.input_images.push_back(path);
   }
   Texture t;
   t.image = image;

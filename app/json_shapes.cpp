@@ -236,6 +236,7 @@ void JsonSceneBuilder::add_environment(const JsonNode& node) {
   } catch (const ImageError& e) {
     file.fail(std::string("cannot read image: ") + e.what());
   }
+  scene_.input_images.push_back(path);
   scene_.lights.push_back(make_image_environment(std::move(image), scale, rotation));
 }
 

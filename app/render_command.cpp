@@ -77,6 +77,15 @@ int run_render(const RenderArgs& args) {
     std::cerr << "lumis: " << scene_path << ": " << e.what() << "\n";
     return 1;
   }
+  // The scene's own images (an environment map, a texture) are known only now: -o must not replace one of them
+  // (through a symbolic or hard link too).
+  for (const std::string& input : scene->input_images) {
+    std::error_code ec;
+    if (std::filesystem::equivalent(out, input, ec)) {
+      std::cerr << "lumis: " << out << ": is an image the scene reads (" << input << "); write the render elsewhere\n";
+      return 2;
+    }
+  }
   RenderSettings& s = scene->settings;
   for (const std::string& w : unused_overrides(args.overrides, {s.integrator}))
     std::cerr << "lumis: warning: " << w << "\n";

@@ -45,6 +45,9 @@ struct Scene {
   Camera camera;
   RenderSettings settings;
   std::string source;        ///< file the scene came from (for messages)
+  /// Image files the scene was built from (textures, environment maps), as the loader resolved them: an output
+  /// must not be written over one of them.
+  std::vector<std::string> input_images;
   /// Set when the file has no camera and `camera` was generated to frame these bounds for the film's aspect ratio
   /// (app/json_scene.h, frame_bounds): a new image size calls for framing them again.
   std::optional<Bounds3> framed;

@@ -3,7 +3,8 @@
 # scene list), naming the path given and not a temporary one; options that cannot take effect are refused (AOVs in
 # a PNG) or named in a warning (--mis-light-probability without the mis integrator); command-line errors start
 # with "lumis: " and give the accepted range; --uniform-measure takes the scene file's spelling too; --width or
-# --height alone keeps the aspect ratio; --camera is refused for a JSON scene; diff compares grey images; a write
+# --height alone keeps the aspect ratio; --camera is refused for a JSON scene; diff compares grey images; an empty
+# file name is a usage error; -o may not name an image the scene reads; a write
 # cut short (a file-size limit standing in for a full disk) fails render, diff and compare without a short file,
 # and output lost on stdout is an error too.
 # Usage: outputs.sh path/to/lumis   (exit 77 = skipped)
@@ -139,4 +140,46 @@ has "$T/no-such-scene.json: file not found"
 [ ! -s "$T/out" ] || fail "bench printed a report: $(cat "$T/out")"
 quick 2 "$LUMIS" bench "$SCENE" --json "$T/no-such-folder/b.json"
 has "the folder $T/no-such-folder does not exist"
+# -o naming an image the scene reads (its environment map, a texture of the scene or of a glTF file it loads, or of a
+# glTF file rendered directly; also through a link) is refused before rendering, and the image is left as it was: a
+# render once replaced the scene's environment map with itself.
+mkdir "$T/own"
+need python3 python3
+python3 - "$T/own" <<'PY' || fail "could not write the scenes that read images"
+import base64, json, struct, sys
+d = sys.argv[1]
+mat = {"m": {"type": "diffuse"}}
+sphere = {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}
+json.dump({"materials": mat, "shapes": [sphere], "lights": [{"type": "environment", "file": "env.exr"}]},
+          open(d + "/env.json", "w"))
+json.dump({"materials": {"m": {"type": "diffuse", "texture": "tex.png"}}, "shapes": [sphere],
+           "lights": [{"type": "environment", "radiance": [1, 1, 1]}]}, open(d + "/tex.json", "w"))
+pos = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<6f", 0, 0, 1, 0, 0, 1)
+gltf = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+        "textures": [{"source": 0}], "images": [{"uri": "gtex.png"}],
+        "buffers": [{"byteLength": len(pos), "uri": "data:application/octet-stream;base64," +
+                     base64.b64encode(pos).decode()}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]}
+json.dump(gltf, open(d + "/tri.gltf", "w"))
+json.dump({"materials": mat, "shapes": [{"type": "gltf", "file": "tri.gltf"}],
+           "lights": [{"type": "environment", "radiance": [1, 1, 1]}]}, open(d + "/inc.json", "w"))
+PY
+oiiotool --pattern constant:color=0.5,0.5,0.5 8x4 3 -d half -o "$T/own/env.exr" &&
+  oiiotool --pattern constant:color=0.2,0.4,0.6 4x4 3 -d uint8 -o "$T/own/tex.png" &&
+  cp "$T/own/tex.png" "$T/own/gtex.png" || fail "oiiotool could not write the scenes' images"
+ln -s env.exr "$T/own/env-link.exr"
+for pair in "env.json env.exr" "env.json env-link.exr" "tex.json tex.png" "inc.json gtex.png" "tri.gltf gtex.png"; do
+  read -r scene image <<< "$pair"
+  cp -P "$T/own/$image" "$T/own/before"
+  quick 2 "$LUMIS" render "$T/own/$scene" -o "$T/own/$image" --width 8 --spp 1 -q
+  has "lumis: $T/own/$image: is an image the scene reads ($T/own/"
+  cmp -s "$T/own/$image" "$T/own/before" || fail "rendering $scene changed $image"
+  rm -f "$T/own/before"
+done
+expect 0 "$LUMIS" render "$T/own/tri.gltf" -o "$T/own/other.png" --width 8 --spp 1 -q
 echo "output and option checks passed"
