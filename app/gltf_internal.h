@@ -95,6 +95,11 @@ std::string decode_uri(const std::string& uri);
 /// Path of a relative URI (decode_uri) in the glTF file's folder.
 std::string resolve_uri(const Context& ctx, const std::string& uri);
 
+/// buffers[i]'s URI: an external file must be in the glTF file's folder and hold byte_length bytes. When explaining
+/// why tinygltf rejected the file (`uri` as the JSON gives it), also: not empty (a .glb's own buffer has no uri at
+/// all), and a data: URI is base64 of a media type tinygltf decodes, holding byte_length bytes.
+void check_buffer_uri(const Context& ctx, size_t i, const std::string& uri, uint64_t byte_length, bool explaining);
+
 /// tinygltf 2.7 decodes a buffer's or image's URI as a web form does, '+' as a space, joins it to the folder and
 /// hands the path to FsCallbacks::ExpandFilePath: expand_plus_uri gives it its '+' back. `plus` maps tinygltf's
 /// reading of each URI that holds a '+' to the file name it means.

@@ -46,20 +46,6 @@ void check_version(const Context& ctx, const std::string& version, const std::st
     ctx.fail("asset.minVersion", "the file needs glTF " + min_version + "; lumis reads glTF 2.0");
 }
 
-/// buffers[i]: an external file (not a data: URI) must be in the glTF file's folder and hold byteLength bytes.
-void check_buffer_file(const Context& ctx, size_t i, const std::string& uri, uint64_t byte_length) {
-  if (uri.empty() || uri.rfind("data:", 0) == 0) return;
-  const std::string at = indexed("buffers", i);
-  const std::string file = resolve_uri(ctx, uri);
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec))
-    ctx.fail(at + ".uri", "buffer file '" + uri + "' not found (looked for " + file + ")");
-  const uint64_t size = fs::file_size(file, ec);
-  if (!ec && size != byte_length)
-    ctx.fail(at + ".byteLength", "is " + std::to_string(byte_length) + ", but the file " + file + " has " +
-                                     std::to_string(size) + " bytes");
-}
-
 /// The JSON text of a .gltf, or the JSON chunk of a .glb (12-byte header, chunk length, "JSON", the text, read
 /// without the binary chunk); nothing when a .glb's header is too damaged to find it (tinygltf then says why).
 std::optional<std::string> json_text(const std::string& path, bool binary) {
@@ -104,7 +90,7 @@ void explain_rejection(const Context& ctx, const std::string& path, bool binary)
       const auto& buffer = (*b)[i];
       if (buffer.is_object() && buffer.contains("uri") && buffer["uri"].is_string() &&
           buffer.contains("byteLength") && buffer["byteLength"].is_number_unsigned())
-        check_buffer_file(ctx, i, buffer["uri"], buffer["byteLength"]);
+        check_buffer_uri(ctx, i, buffer["uri"], buffer["byteLength"], /*explaining=*/true);
     }
 }
 
@@ -125,8 +111,10 @@ void parse_file(Context& ctx, const std::string& path) {
   std::string err, warn;
   const bool ok = binary ? loader.LoadBinaryFromFile(&ctx.model, &err, &warn, path)
                          : loader.LoadASCIIFromFile(&ctx.model, &err, &warn, path);
+  // tinygltf's message, without trailing blanks and at most 300 characters (it can quote a whole data: URI).
   auto trim = [](std::string s) {
     while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+    if (s.size() > 300) s = s.substr(0, 300) + "... (" + std::to_string(s.size() - 300) + " more characters)";
     return s;
   };
   if (!ok || !err.empty()) {
@@ -136,7 +124,7 @@ void parse_file(Context& ctx, const std::string& path) {
   check_version(ctx, ctx.model.asset.version, ctx.model.asset.minVersion);
   // tinygltf also looks in the working folder: a buffer must be where the file says.
   for (size_t i = 0; i < ctx.model.buffers.size(); ++i)
-    check_buffer_file(ctx, i, ctx.model.buffers[i].uri, ctx.model.buffers[i].data.size());
+    check_buffer_uri(ctx, i, ctx.model.buffers[i].uri, ctx.model.buffers[i].data.size(), /*explaining=*/false);
 
   // Missing external images: name the URI (tinygltf only warns).
   for (size_t i = 0; i < ctx.model.images.size(); ++i) {

@@ -1,9 +1,12 @@
-// URIs of glTF buffers and images: percent-decoding as RFC 3986 says, and the '+' that tinygltf 2.7 reads as a
-// space put back.
+// URIs of glTF buffers and images: percent-decoding as RFC 3986 says, the '+' that tinygltf 2.7 reads as a space put
+// back, and a buffer's URI checked (its file, or its data: URI's base64) so that an error names the buffer.
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include <nlohmann/json.hpp>
@@ -28,6 +31,71 @@ std::string decode_uri(const std::string& uri) {
 
 std::string resolve_uri(const Context& ctx, const std::string& uri) {
   return (std::filesystem::path(ctx.base_dir) / decode_uri(uri)).string();
+}
+
+namespace {
+
+/// At most n characters of s, for messages: a data: URI can be megabytes long.
+std::string clip(const std::string& s, size_t n) {
+  return s.size() <= n ? s : s.substr(0, n) + "... (" + std::to_string(s.size() - n) + " more characters)";
+}
+
+bool is_base64_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '/';
+}
+
+/// A base64 data: URI as tinygltf 2.7 decodes it: one of its media types, the alphabet, '=' only as the final padding,
+/// and exactly byte_length bytes.
+void check_data_uri(const Context& ctx, const std::string& at, const std::string& uri, uint64_t byte_length) {
+  // The media types tinygltf 2.7 decodes for a buffer (IsDataURI and DecodeDataURI agree on these); another one is
+  // read as a file name.
+  static const char* kPrefixes[] = {"data:application/octet-stream;base64,", "data:application/gltf-buffer;base64,",
+                                    "data:image/jpeg;base64,", "data:image/png;base64,", "data:image/bmp;base64,",
+                                    "data:image/gif;base64,", "data:text/plain;base64,"};
+  const size_t comma = uri.find(',');
+  const std::string head = uri.substr(0, comma == std::string::npos ? uri.size() : comma + 1);
+  if (std::none_of(std::begin(kPrefixes), std::end(kPrefixes), [&](const char* p) { return head == p; }))
+    ctx.fail(at + ".uri", "a data: URI that lumis's glTF reader cannot decode, '" + clip(head, 60) +
+                              "' (expected " + kPrefixes[0] + "... or " + kPrefixes[1] + "...)");
+  const std::string_view data = std::string_view(uri).substr(comma + 1);
+  size_t end = data.size();
+  while (end > 0 && data.size() - end < 2 && data[end - 1] == '=') --end;  // up to two padding characters
+  for (size_t k = 0; k < end; ++k)
+    if (!is_base64_char(data[k])) {
+      const unsigned char c = static_cast<unsigned char>(data[k]);
+      char shown[8];
+      std::snprintf(shown, sizeof shown, std::isprint(c) ? "'%c'" : "0x%02x", c);
+      ctx.fail(at + ".uri", "invalid base64 in the data: URI: " + std::string(shown) + " at character " +
+                                std::to_string(k) + " after the comma");
+    }
+  const uint64_t bytes = end * 3 / 4;
+  if (bytes != byte_length)
+    ctx.fail(at + ".byteLength", "is " + std::to_string(byte_length) + ", but the data: URI holds " +
+                                     std::to_string(bytes) + " bytes");
+}
+
+}  // namespace
+
+void check_buffer_uri(const Context& ctx, size_t i, const std::string& uri, uint64_t byte_length, bool explaining) {
+  const std::string at = indexed("buffers", i);
+  if (uri.empty()) {
+    if (explaining) ctx.fail(at + ".uri", "is empty: expected a file name or a data: URI (a .glb's own buffer has none)");
+    return;
+  }
+  if (uri.rfind("data:", 0) == 0) {
+    if (explaining) check_data_uri(ctx, at, uri, byte_length);
+    return;
+  }
+  if (decode_uri(uri).find('\0') != std::string::npos)
+    ctx.fail(at + ".uri", "'" + uri + "' names a file with a NUL character (%00) in it");
+  const std::string file = resolve_uri(ctx, uri);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    ctx.fail(at + ".uri", "buffer file '" + uri + "' not found (looked for " + file + ")");
+  const uint64_t size = std::filesystem::file_size(file, ec);
+  if (!ec && size != byte_length)
+    ctx.fail(at + ".byteLength", "is " + std::to_string(byte_length) + ", but the file " + file + " has " +
+                                     std::to_string(size) + " bytes");
 }
 
 PlusUris plus_uris(const Context& ctx, const std::string& text) {

@@ -359,7 +359,8 @@ case("gltf_bad_mode", ".gltf", embed(*variant(set_path(["meshes", 0, "primitives
 case("gltf_required_extension", ".gltf",
      embed(*variant(set_path(["extensionsRequired"], ["KHR_draco_mesh_compression"]))), "KHR_draco_mesh_compression")
 case("gltf_bad_base64", ".gltf",
-     embed(*variant(lambda d: None)).replace("base64,", "base64,!!!!", 1), "invalid glTF")
+     embed(*variant(lambda d: None)).replace("base64,", "base64,!!!!", 1),
+     "buffers[0].uri: invalid base64 in the data: URI: '!' at character 0 after the comma")
 case("gltf_missing_buffer_file", ".gltf",
      json.dumps(dict(good_doc, buffers=[{"byteLength": len(good_data), "uri": "no-such-buffer.bin"}])),
      "no-such-buffer.bin")
@@ -463,6 +464,38 @@ case("gltf_position_unsigned_byte", ".gltf", embed(*variant(set_path(["accessors
      "accessors[0].componentType: UNSIGNED_BYTE, expected FLOAT")
 case("gltf_float_indices", ".gltf", embed(*variant(set_path(["accessors", 1, "componentType"], 5126))),
      "accessors[1].componentType: FLOAT, expected UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT")
+# A buffer's data: URI that tinygltf cannot decode: the error names the buffer and what is wrong with it. tinygltf's
+# own message ("Failed to decode 'uri' : data:...") quoted the whole URI, megabytes for a large model, and no path.
+def with_buffer(uri=None, extra_length=0):
+    def mutate(doc):
+        b = doc["buffers"][0]
+        if uri is not None:
+            b["uri"] = uri(b["uri"]) if callable(uri) else uri
+        b["byteLength"] += extra_length
+    return mutate
+
+
+def spoil_base64(uri):
+    head, data = uri.split(",", 1)
+    return head + "," + data[:10] + "!" + data[11:] + "A" * 2000
+
+
+def embedded(mutate):
+    doc, data = variant(lambda d: None)
+    doc = json.loads(embed(doc, data))
+    mutate(doc)
+    return json.dumps(doc) + "\n"
+
+
+case("gltf_buffer_base64_invalid", ".gltf", embedded(with_buffer(spoil_base64)),
+     "buffers[0].uri: invalid base64 in the data: URI: '!' at character 10 after the comma")
+case("gltf_buffer_uri_empty", ".gltf", embedded(with_buffer("")), "buffers[0].uri: is empty")
+case("gltf_buffer_data_uri_not_base64", ".gltf", embedded(with_buffer(lambda u: "data:," + u.split(",", 1)[1])),
+     "buffers[0].uri: a data: URI that lumis's glTF reader cannot decode, 'data:,'")
+case("gltf_buffer_data_uri_short", ".gltf", embedded(with_buffer(extra_length=3)),
+     "buffers[0].byteLength: is 47, but the data: URI holds 44 bytes")
+case("gltf_buffer_uri_nul", ".gltf", embedded(with_buffer("tri%00.bin")),
+     "buffers[0].uri: 'tri%00.bin' names a file with a NUL character (%00) in it")
 case("gltf_missing_buffer_uri", ".gltf",
      json.dumps(dict(good_doc, buffers=[{"byteLength": len(good_data), "uri": "no-such-buffer.bin"}])),
      "buffers[0].uri: buffer file 'no-such-buffer.bin' not found (looked for")
