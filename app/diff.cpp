@@ -27,11 +27,21 @@ std::vector<int> variance_channels(const Image& img) {
 
 }  // namespace
 
+bool is_grey(const Image& img) {
+  // OpenImageIO names a greyscale PNG's one channel Y (and its alpha A). Y beside other channels is not grey: in an
+  // XYZ image it is one of three colour channels, and R, G, B taken as Y three times would compare the wrong thing.
+  if (img.channel_index("Y") < 0) return false;
+  for (const std::string& c : img.channel_names)
+    if (c != "Y" && c != "A") return false;
+  return true;
+}
+
 std::vector<int> rgb_channels(const Image& img, const std::string& name) {
-  // A grey image (OpenImageIO names its one channel Y, as in a greyscale PNG) compares as R = G = B = Y.
-  if (const int y = img.channel_index("Y");
-      y >= 0 && img.channel_index("R") < 0 && img.channel_index("G") < 0 && img.channel_index("B") < 0)
+  // A grey image compares as R = G = B = Y.
+  if (is_grey(img)) {
+    const int y = img.channel_index("Y");
     return {y, y, y};
+  }
   std::vector<int> idx;
   std::string missing;
   for (const char* n : {"R", "G", "B"}) {
@@ -43,7 +53,7 @@ std::vector<int> rgb_channels(const Image& img, const std::string& name) {
     std::string have;
     for (const std::string& c : img.channel_names) have += (have.empty() ? "" : ", ") + c;
     throw DiffError(name + ": no " + missing + " channel (has " + have +
-                    "); R, G, B (or a grey Y channel) are compared");
+                    "); R, G, B (or the Y of a grey image: Y alone or with A) are compared");
   }
   return idx;
 }

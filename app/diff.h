@@ -37,6 +37,8 @@ struct DiffMetrics {
   uint64_t nonfinite = 0;  ///< pixel-channels where a or b is NaN or infinite (every metric then is NaN)
 };
 
+/// Whether an image is grey: a Y channel and no other but an alpha channel A (not X, Y, Z, nor R, G, B with Y).
+bool is_grey(const Image& img);
 /// Indices of the R, G and B channels (a grey image's Y channel three times); throws DiffError naming `name` when
 /// one is missing.
 std::vector<int> rgb_channels(const Image& img, const std::string& name);

@@ -93,6 +93,12 @@ int run_diff(const DiffArgs& args) {
     return 2;
   }
 
+  // Which channels were compared: a grey image's Y stands for R, G and B.
+  const bool grey_a = is_grey(a), grey_b = is_grey(b);
+  const std::string channels = grey_a && grey_b ? "Y (as R, G, B)"
+                               : grey_a         ? "Y of A (as R, G, B) and R G B of B"
+                               : grey_b         ? "R G B of A and Y of B (as R, G, B)"
+                                                : "R G B";
   const double value = metric_value(m, args.metric);
   const bool threshold_ok = !args.threshold || metric_passes(args.metric, value, *args.threshold);
   const bool passed = threshold_ok && (!z || z->passed);
@@ -100,6 +106,7 @@ int run_diff(const DiffArgs& args) {
     nlohmann::json j = metrics_json(m);
     j["a"] = args.a;
     j["b"] = args.b;
+    j["channels"] = channels;
     if (args.threshold)
       j["threshold"] = {{"metric", args.metric}, {"value", value}, {"threshold", *args.threshold},
                         {"passed", threshold_ok}};
@@ -108,8 +115,8 @@ int run_diff(const DiffArgs& args) {
     j["passed"] = passed;
     std::cout << j.dump(2) << "\n";
   } else {
-    std::printf("A: %s\nB (reference): %s\n%dx%d, R G B compared\n", args.a.c_str(), args.b.c_str(), m.width,
-                m.height);
+    std::printf("A: %s\nB (reference): %s\n%dx%d, %s compared\n", args.a.c_str(), args.b.c_str(), m.width,
+                m.height, channels.c_str());
     std::printf("  mse     %.6g\n  rmse    %.6g\n  relmse  %.6g\n  mae     %.6g\n", m.mse, m.rmse, m.rel_mse, m.mae);
     std::printf("  psnr    %.3f dB (peak %.6g)\n  maxabs  %.6g\n", m.psnr, m.psnr_peak, m.max_abs);
     std::printf("  over    %.4g%% of pixels have |A-B| > %g in some channel\n", m.over_tolerance_percent,

@@ -139,6 +139,26 @@ TEST(DiffMetrics, AGreyImageComparesAsEqualRGB) {
   EXPECT_NEAR(compute_metrics(grey, off).max_abs, 0.1, 1e-6);
 }
 
+TEST(DiffMetrics, YIsGreyOnlyWithoutOtherColourChannels) {
+  // Y with an alpha channel is still grey; Y beside X and Z (an XYZ image) is not, and is refused by name.
+  Image grey_alpha(2, 1, {"Y", "A"});
+  grey_alpha.data = {0.25f, 1.0f, 0.5f, 1.0f};
+  const Image rgb = rgb_image(2, 1, {0.25f, 0.25f, 0.25f, 0.5f, 0.5f, 0.5f});
+  EXPECT_TRUE(is_grey(grey_alpha));
+  EXPECT_FALSE(is_grey(rgb));
+  EXPECT_EQ(compute_metrics(grey_alpha, rgb).mse, 0.0);
+  Image xyz(2, 1, {"X", "Y", "Z"});
+  EXPECT_FALSE(is_grey(xyz));
+  DiffOptions o;
+  o.name_a = "xyz.exr";
+  try {
+    compute_metrics(xyz, rgb, o);
+    FAIL() << "an XYZ image compared as grey";
+  } catch (const DiffError& e) {
+    EXPECT_NE(std::string(e.what()).find("xyz.exr: no R, G, B channel (has X, Y, Z)"), std::string::npos) << e.what();
+  }
+}
+
 // Two independent renders of the same mean: 64x64x3 = 12288 pixel-channels, each with sigma 0.01 (A) and 0.02 (B)
 // and both variances stated. Alpha 0.01 is family-wise (Sidak), so this passes with probability 0.99 for a fresh
 // seed: the false-failure rate is 1%; seeds 1 and 2 are fixed so the outcome is deterministic.

@@ -70,4 +70,17 @@ oiiotool --pattern constant:color=0.25,0.5,1.5 4x4 3 -d float -o "$T/off.exr" ||
 expect 0 "$LUMIS" diff "$T/off.exr" "$T/peak2.exr" --psnr-peak max --json
 grep -q '"psnr_peak": 2.0,' "$T/out" || fail "--psnr-peak max: $(cat "$T/out")"
 grep -q '"psnr": 16.8124' "$T/out" || fail "PSNR with peak 2: $(cat "$T/out")"
+# A grey image (Y, with or without A) compares as R = G = B, and the report says so; Y beside other colour channels
+# (an XYZ image) is not grey: an error naming the channels, not R, G, B silently taken as Y three times.
+oiiotool "$T/linear.exr" --ch "Y=R" -o "$T/grey.exr" || fail "oiiotool: grey.exr"
+oiiotool "$T/linear.exr" --ch "Y=R,A=G" -o "$T/grey-alpha.exr" || fail "oiiotool: grey-alpha.exr"
+oiiotool "$T/linear.exr" --ch "X=R,Y=G,Z=B" -o "$T/xyz.exr" || fail "oiiotool: xyz.exr"
+expect 0 "$LUMIS" diff "$T/grey.exr" "$T/grey-alpha.exr" --threshold 0
+grep -q "^4x4, Y (as R, G, B) compared$" "$T/out" || fail "grey report: $(cat "$T/out")"
+expect 0 "$LUMIS" diff "$T/grey.exr" "$T/linear.exr" --threshold 0
+grep -q "^4x4, Y of A (as R, G, B) and R G B of B compared$" "$T/out" || fail "grey against RGB: $(cat "$T/out")"
+expect 0 "$LUMIS" diff "$T/linear.exr" "$T/linear.exr"
+grep -q "^4x4, R G B compared$" "$T/out" || fail "RGB report: $(cat "$T/out")"
+expect 2 "$LUMIS" diff "$T/xyz.exr" "$T/linear.exr"
+grep -qF "$T/xyz.exr: no R, G, B channel (has X, Y, Z)" "$T/err" || fail "XYZ message: $(cat "$T/out" "$T/err")"
 echo "diff.sh: all checks passed"
