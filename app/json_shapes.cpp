@@ -57,6 +57,7 @@ TriangleSampling json_mesh_sampling(const JsonNode& node) {
 
 void JsonSceneBuilder::add_shape(const JsonNode& node) {
   static const std::vector<std::string> types = {"sphere", "quad", "mesh", "gltf"};
+  if (auto n = node.find("name")) n->as_string();  // only used in messages, but a string on every kind of shape
   switch (node["type"].as_choice(types, "shape type")) {
     case 0: add_sphere_shape(node); break;
     case 1: add_quad_shape(node); break;

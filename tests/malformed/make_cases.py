@@ -101,6 +101,16 @@ case("json_shapes_object", ".json", dump(scene(shapes={"type": "sphere"})), "/sh
 case("json_unknown_top_key", ".json", dump(scene(shape=[])), 'unknown key "shape" (did you mean "shapes"?)')
 case("json_unknown_shape_key", ".json", dump(scene(shapes=[dict(sphere(), radus=1)])), '/shapes/0/radus: unknown key')
 case("json_bad_version", ".json", dump(scene(version=2)), "unsupported scene format version")
+# A shape's name is a string (only used in messages), on every kind of shape; a sphere once took any value.
+case("json_sphere_name_object", ".json", dump(scene(shapes=[sphere(name={"a": 1})])),
+     "/shapes/0/name: expected a string, found an object")
+case("json_sphere_name_null", ".json", dump(scene(shapes=[sphere(name=None)])),
+     "/shapes/0/name: expected a string, found null")
+case("json_sphere_name_number", ".json", dump(scene(shapes=[sphere(name=5)])),
+     "/shapes/0/name: expected a string, found the number 5")
+case("json_quad_name_number", ".json",
+     dump(scene(shapes=[{"type": "quad", "name": 5, "origin": [-1, 0, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2],
+                         "material": "grey"}])), "/shapes/0/name: expected a string")
 
 # Unknown names list the valid ones.
 case("json_unknown_integrator", ".json", dump(scene(render={"integrator": "path"})),
