@@ -2,6 +2,8 @@
 // machine is shared and noisy). The same figures as JSON: app/bench_report_json.cpp.
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app/bench_internal.h"
 
@@ -128,13 +130,18 @@ void print_bench_report(const BenchReport& r) {
     std::printf("  %-4s %-60s %-16s %8.3f (%s %g)\n", t.met() ? "met" : "MISS", t.name.c_str(), t.scene.c_str(),
                 t.value, t.at_least ? ">=" : "<", t.bound);
 
-  std::printf("\nWhat the rays/s target leaves lumis's own code (nee_mis, CPU us per sample; Embree's part: "
-              "emb%%):\n");
+  // nee_mis's figures only: with --integrator bsdf (say) there are none, and no heading either.
+  std::vector<std::pair<const SceneResult*, Budget>> rows;
   for (const SceneResult& s : r.scenes) {
     const BenchVariantResult* v = s.error.empty() ? find_variant(s, "nee_mis") : nullptr;
     const Budget b = v ? budget(*v) : Budget{};
-    if (!(b.per_sample > 0)) continue;
-    std::printf("  %-28s now %.2f = Embree %.2f + lumis %.2f; at ratio %.1f: %.2f, lumis ", s.name.c_str(),
+    if (b.per_sample > 0) rows.emplace_back(&s, b);
+  }
+  if (!rows.empty())
+    std::printf("\nWhat the rays/s target leaves lumis's own code (nee_mis, CPU us per sample; Embree's part: "
+                "emb%%):\n");
+  for (const auto& [s, b] : rows) {
+    std::printf("  %-28s now %.2f = Embree %.2f + lumis %.2f; at ratio %.1f: %.2f, lumis ", s->name.c_str(),
                 b.per_sample * 1e6, b.embree * 1e6, b.lumis * 1e6, kTargetRatio,
                 (b.embree + b.lumis_at_target) * 1e6);
     if (b.lumis_at_target <= 0) std::printf("out of reach (Embree alone takes longer)\n");
