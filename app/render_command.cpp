@@ -140,7 +140,9 @@ int run_render(const RenderArgs& args) {
                    {"lumis:seed", std::to_string(s.seed)},
                    {"lumis:scene", scene_path},
                    {"lumis:dropped_samples", std::to_string(st.dropped)},
-                   {"lumis:stopped", !st.stopped_early ? "complete" : g_interrupted ? "interrupted" : "time budget"},
+                   {"lumis:stopped", st.stopped_early ? (g_interrupted ? "interrupted" : "time budget")
+                                     : timed && st.spp >= kTimedRenderSpp ? "sample cap"
+                                                                          : "complete"},
                    {"Software", std::string("lumis ") + LUMIS_VERSION}};
     write_image(out, film.to_image(), wo);
   } catch (const std::exception& e) {

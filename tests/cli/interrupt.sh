@@ -75,6 +75,18 @@ spp=$(attr "$T/time/out.exr" lumis:spp)
 # The budget includes no scene loading; 20 s leaves room for slow sanitizer builds and busy machines.
 awk -v e="$elapsed" 'BEGIN { exit !(e < 20) }' || fail "--time 1 took $elapsed s"
 
+# A timed render that reaches the most samples a timed render takes (2^20) before its budget says that the cap, not
+# the budget or the end of the work, stopped it. One pixel whose camera ray misses everything: about 2 s.
+cat > "$T/miss.json" <<'EOF2'
+{"version": 1, "camera": {"type": "perspective", "from": [0, 0, 0], "to": [0, 0, -1], "fov": 1},
+ "materials": {"grey": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+ "shapes": [{"type": "quad", "origin": [-1, -1, 5], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], "material": "grey"}]}
+EOF2
+"$LUMIS" render "$T/miss.json" --width 1 --height 1 --time 1000 -q -o "$T/cap.exr" 2>"$T/err" ||
+  fail "capped render failed: $(cat "$T/err")"
+[ "$(attr "$T/cap.exr" lumis:spp)" = 1048576 ] && [ "$(attr "$T/cap.exr" lumis:stopped)" = "sample cap" ] ||
+  fail "metadata of a render stopped by the sample cap: $(iinfo -v "$T/cap.exr")"
+
 # A complete render says so, with the spp asked for.
 "$LUMIS" render "$SCENE" --width 8 --height 8 --spp 3 -q -o "$T/full.exr" 2>"$T/err" || fail "small render failed"
 [ "$(attr "$T/full.exr" lumis:spp)" = 3 ] && [ "$(attr "$T/full.exr" lumis:stopped)" = complete ] ||
