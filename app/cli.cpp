@@ -16,6 +16,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/cli_checks.h"
 #include "app/commands.h"
 #include "app/diff.h"
 #include "app/warptest.h"
@@ -26,18 +27,7 @@ namespace lumis {
 namespace {
 
 /// CLI11 check that a number option is finite: CLI::Range lets NaN through (every comparison with it is false).
-const CLI::Validator kFiniteNumber(
-    [](std::string& text) -> std::string {
-      // CLI11 runs checks before conversion: parse as the option will (a whole string that is a number).
-      try {
-        size_t used = 0;
-        const double v = std::stod(text, &used);
-        if (used == text.size() && !std::isfinite(v)) return "expected a finite number, found " + text;
-      } catch (const std::exception&) {  // not a number: the option's own conversion reports it
-      }
-      return {};
-    },
-    "FINITE");
+const CLI::Validator kFiniteNumber(finite_problem, "FINITE");
 
 /// CLI11 check for a file or name argument: an empty string (an unset shell variable, `-o ""`) is a usage error, not
 /// "not given", which would render the default scene or write the default output file.
@@ -53,34 +43,30 @@ const CLI::Validator kNonEmpty = non_empty("a file name");
 /// CLI11 check that a number lies in [lo, hi], with a message that says so in the option's own terms (CLI::Range
 /// prints its bounds with six decimals, or as the largest double when there is no upper bound).
 CLI::Validator number_in(double lo, double hi, const std::string& expected) {
-  return CLI::Validator(
-      [lo, hi, expected](std::string& text) -> std::string {
-        try {
-          size_t used = 0;
-          const double v = std::stod(text, &used);
-          if (used == text.size() && !(v >= lo && v <= hi)) return "expected " + expected + ", found " + text;
-        } catch (const std::exception&) {  // not a number: the option's own conversion reports it
-        }
-        return {};
-      },
-      expected);
+  return CLI::Validator([=](std::string& text) { return range_problem(text, lo, hi, expected); }, expected);
+}
+
+/// CLI11 check of a whole number in [lo, hi]: CLI::Range calls 1e3 or 1.5 "not in range" when they are no integer.
+CLI::Validator whole_in(long long lo, long long hi) {
+  return CLI::Validator([=](std::string& text) { return whole_problem(text, lo, hi); },
+                        "INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
 }
 
 /// The render options that override the scene file (render, compare and bench).
 void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
   cmd.add_option("--spp", o.spp, "Samples per pixel (given alone, it overrides a scene file's time budget)")
-      ->check(CLI::Range(1u, 1u << 30));
+      ->check(whole_in(1, 1 << 30));
   cmd.add_option("--integrator", o.integrator, "uniform | bsdf | light | mis | nee_mis");
   cmd.add_option("--max-depth", o.max_depth, "Scattering vertices per path (1 = direct lighting only)")
-      ->check(CLI::Range(1, 1024));
-  cmd.add_option("--rr-depth", o.rr_depth, "Russian roulette from this depth on (0 = off)")->check(CLI::Range(0, 1024));
+      ->check(whole_in(1, 1024));
+  cmd.add_option("--rr-depth", o.rr_depth, "Russian roulette from this depth on (0 = off)")->check(whole_in(0, 1024));
   cmd.add_option("--seed", o.seed, "Random seed, in [0, 4294967295]")
-      ->check(number_in(0, 4294967295.0, "a whole number in [0, 4294967295]"));
-  cmd.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+      ->check(whole_in(0, 4294967295));
+  cmd.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(whole_in(1, 1024));
   cmd.add_option("--width", o.width, "Image width in pixels (alone: the height keeps the scene's aspect ratio)")
-      ->check(CLI::Range(1, kMaxImageSide));
+      ->check(whole_in(1, kMaxImageSide));
   cmd.add_option("--height", o.height, "Image height in pixels (alone: the width keeps the scene's aspect ratio)")
-      ->check(CLI::Range(1, kMaxImageSide));
+      ->check(whole_in(1, kMaxImageSide));
   cmd.add_option("--sampler", o.sampler, "independent | stratified | sobol");
   cmd.add_option("--light-selection", o.light_selection, "uniform | power | importance");
   cmd.add_option("--mis-heuristic", o.mis_heuristic, "balance | power");
@@ -103,10 +89,10 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
   cmd.add_option("--uniform-measure", o.uniform_measure, "theta-phi | solid-angle (for --integrator uniform)");
   cmd.add_option("--time", o.time, "Stop after this many seconds (writes what was rendered; 0 = no time budget)")
       ->check(kFiniteNumber)
-      ->check(CLI::Range(0.0, 1e7));
+      ->check(number_in(0, 1e7, "a number of seconds in [0, 1e7]"));
   cmd.add_option("--exposure", o.exposure, "Exposure in stops for PNG/JPG output")
       ->check(kFiniteNumber)
-      ->check(CLI::Range(-64.0f, 64.0f));
+      ->check(number_in(-64, 64, "a number in [-64, 64]"));
 }
 
 /// --camera (render and compare: the commands that load one scene).
@@ -154,7 +140,7 @@ void register_warptest_command(CLI::App& app, int& exit_code) {
   // The chi-square test needs cells that expect 5 samples or more: uniform_sphere's 3200 equal cells need 16,000
   // samples; from 100,000 on, every warp at its default parameter has hundreds of such cells.
   cmd->add_option("--samples", args->samples, "Number of samples")
-      ->check(CLI::Range(100'000ull, 1'000'000'000ull))
+      ->check(whole_in(100'000, 1'000'000'000))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->out, "Histogram picture (PNG; .exr, .jpg and .hdr also work), '' for none")
       ->capture_default_str();
@@ -207,7 +193,7 @@ void register_compare_command(CLI::App& app, int& exit_code) {
       ->check(kNonEmpty);
   cmd->add_option("--reference-spp", args->reference_spp,
                   "Samples per pixel of the rendered nee_mis reference (default: 16 x spp, at least 256)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_in(1, 1 << 30));
   cmd->add_option("--crop", args->crop, "x,y,w,h: add a row of zoomed crops of this region to montage.png");
   cmd->add_flag("--convergence", args->convergence,
                 "Also render each variant at 1, 2, 4, ... spp up to its own and plot error against time "
@@ -236,16 +222,16 @@ void register_bench_command(CLI::App& app, int& exit_code) {
                   "and the largest shared glTF models)")
       ->check(kNonEmpty);
   cmd->add_option("--json", o.json_out, "Write the results as JSON to this file")->check(kNonEmpty);
-  CLI::Option* repeat = cmd->add_option("--repeat", o.repeat, "Repetitions; every figure is their median (default 3; 1 with --quick)")->check(CLI::Range(1, 100));
+  CLI::Option* repeat = cmd->add_option("--repeat", o.repeat, "Repetitions; every figure is their median (default 3; 1 with --quick)")->check(whole_in(1, 100));
   cmd->add_flag("--quick", o.quick,
                 "Tiny settings (32x32, 1 spp, 1 repetition, small raw-ray batches, a 20k-triangle @large; of the "
                 "default scenes only @large and cornell-sphere): a smoke test, not a measurement");
   cmd->add_option("--assets", o.assets_dir, "Shared assets folder with gltf/ (default: <source>/../shared/assets)")
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--large-triangles", o.large_triangles, "Triangles in the generated scene (at least)")
-      ->check(CLI::Range(size_t(100), size_t(100'000'000)));
+      ->check(whole_in(100, 100'000'000));
   cmd->add_option("--raw-rays", o.raw_rays, "Rays per kind for the raw Embree measurement (default 524288)")
-      ->check(CLI::Range(size_t(16), size_t(1) << 26));
+      ->check(whole_in(16, 1 << 26));
   cmd->add_option("--write-large-scene", a->write_large,
                   "Only write the generated large scene to this .glb (with --large-triangles) and exit")
       ->check(CLI::Validator(
@@ -279,6 +265,13 @@ int run_cli(int argc, char** argv) {
   register_diff_command(app, exit_code);
   register_compare_command(app, exit_code);
   register_bench_command(app, exit_code);
+  // An unknown command is named with the valid ones (CLI11 would say only "A subcommand is required").
+  std::vector<std::string> commands;
+  for (const CLI::App* c : app.get_subcommands([](const CLI::App*) { return true; })) commands.push_back(c->get_name());
+  if (const std::string problem = unknown_command_problem(argc, argv, commands); !problem.empty()) {
+    std::cerr << "lumis: " << problem << "\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

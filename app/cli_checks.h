@@ -1,0 +1,19 @@
+// The checks behind lumis's command-line options, apart from app/cli.cpp so that they need no CLI11: each returns
+// an empty string for an accepted value, or what is wrong in the option's own terms ("expected ..., found ...").
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace lumis {
+
+/// A number that is not finite (NaN, inf); other text passes, for the option's own conversion to report.
+std::string finite_problem(const std::string& text);
+/// A number outside [lo, hi], described as `expected`; other text passes, as above.
+std::string range_problem(const std::string& text, double lo, double hi, const std::string& expected);
+/// Anything but a whole number in [lo, hi] ("1e3" and "1.5" included): "expected a whole number in [lo, hi], ...".
+std::string whole_problem(const std::string& text, long long lo, long long hi);
+/// The command line's first word that is not an option, when it names none of `commands`: "unknown command ...".
+std::string unknown_command_problem(int argc, const char* const* argv, const std::vector<std::string>& commands);
+
+}  // namespace lumis

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Usage errors say what was wrong in the option's own terms, exit 2, and render nothing: an unknown command is
+# named with the list of commands, a whole-number option given a fraction or an exponent says it wants a whole
+# number (CLI11 once said "not in range"), a range is given as the option states it (CLI11 once printed the largest
+# double, 309 digits, as the upper bound). Usage: usage.sh path/to/lumis   (exit 77 = skipped)
+set -uo pipefail
+LUMIS=${1:?usage: usage.sh path/to/lumis}
+source "$(dirname "$0")/common.bash"
+has() { grep -qF -- "$1" "$T/err" || { cat "$T/err"; fail "stderr lacks '$1'"; }; }
+lacks() { ! grep -qF -- "$1" "$T/err" || { cat "$T/err"; fail "stderr has '$1'"; }; }
+
+expect 2 "$LUMIS" frobnicate
+has "lumis: unknown command 'frobnicate'; commands: render, warptest, diff, compare, bench"
+expect 2 "$LUMIS" frobnicate "$SCENE" --spp 1
+has "lumis: unknown command 'frobnicate'"
+expect 2 "$LUMIS"
+has "lumis: "
+
+R=(render "$SCENE" --width 4 --height 4 --spp 1 -q -o "$T/r.png")
+for bad in 1e3 1.5 ten -1 0 1073741825; do
+  expect 2 "$LUMIS" "${R[@]}" --spp "$bad"
+  has "lumis: --spp: expected a whole number in [1, 1073741824], found $bad"
+  lacks "not in range"
+done
+expect 2 "$LUMIS" "${R[@]}" --width 1e2
+has "lumis: --width: expected a whole number in [1, 16384], found 1e2"
+expect 2 "$LUMIS" "${R[@]}" --max-depth 0
+has "lumis: --max-depth: expected a whole number in [1, 1024], found 0"
+expect 2 "$LUMIS" "${R[@]}" --exposure 65
+has "lumis: --exposure: expected a number in [-64, 64], found 65"
+expect 2 "$LUMIS" "${R[@]}" --time -1
+has "lumis: --time: expected a number of seconds in [0, 1e7], found -1"
+expect 2 "$LUMIS" bench --quick --repeat 0.5
+has "lumis: --repeat: expected a whole number in [1, 100], found 0.5"
+expect 2 "$LUMIS" warptest uniform_sphere --samples 1e6
+has "lumis: --samples: expected a whole number in [100000, 1000000000], found 1e6"
+[ ! -e "$T/r.png" ] || fail "a usage error rendered an image"
+for bad in 0 -2 1.5; do
+  expect 2 "$LUMIS" compare "$SCENE" --reference-spp "$bad" -o "$T/cmp"
+  has "lumis: --reference-spp: expected a whole number in [1, 1073741824], found $bad"
+done
+[ ! -e "$T/cmp" ] || fail "a usage error made compare's folder"
+expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1000 --max-depth 1 -q -o "$T/ok.png"
+
+echo "usage.sh: all checks passed"
