@@ -89,6 +89,8 @@ int run_render(const RenderArgs& args) {
   RenderSettings& s = scene->settings;
   for (const std::string& w : unused_overrides(args.overrides, {s.integrator}))
     std::cerr << "lumis: warning: " << w << "\n";
+  if (args.overrides.exposure && (ext == ".exr" || ext == ".hdr"))  // linear formats: no exposure applied
+    std::cerr << "lumis: warning: --exposure only affects .png, .jpg and .jpeg output; ignored for " << out << "\n";
   std::unique_ptr<Integrator> integrator;
   try {
     integrator = make_integrator(s);

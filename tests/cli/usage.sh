@@ -2,7 +2,8 @@
 # Usage errors say what was wrong in the option's own terms, exit 2, and render nothing: an unknown command is
 # named with the list of commands, a whole-number option given a fraction or an exponent says it wants a whole
 # number (CLI11 once said "not in range"), a range is given as the option states it (CLI11 once printed the largest
-# double, 309 digits, as the upper bound). Usage: usage.sh path/to/lumis   (exit 77 = skipped)
+# double, 309 digits, as the upper bound). An option that cannot take effect is named in a warning: --exposure with
+# an .exr or .hdr output. Usage: usage.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: usage.sh path/to/lumis}
 source "$(dirname "$0")/common.bash"
@@ -42,4 +43,14 @@ done
 [ ! -e "$T/cmp" ] || fail "a usage error made compare's folder"
 expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1000 --max-depth 1 -q -o "$T/ok.png"
 
+# --exposure applies to PNG and JPEG only: with .exr or .hdr a warning says it is ignored (the image is written).
+for ext in exr hdr HDR; do
+  expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1 -q --exposure 3 -o "$T/e.$ext"
+  has "lumis: warning: --exposure only affects .png, .jpg and .jpeg output; ignored for $T/e.$ext"
+  [ -s "$T/e.$ext" ] || fail "no image written to e.$ext"
+done
+expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1 -q --exposure 3 -o "$T/e.png"
+lacks "warning"
+expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1 -q -o "$T/e2.exr"
+lacks "warning"
 echo "usage.sh: all checks passed"
