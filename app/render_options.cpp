@@ -17,13 +17,25 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
   if (o.seed) s.seed = *o.seed;
   if (o.max_depth) s.max_depth = *o.max_depth;
   if (o.rr_depth) s.rr_depth = *o.rr_depth;
-  // One of the two alone keeps the scene's aspect ratio (a smaller or larger render of the same picture).
+  // One of the two alone keeps the scene's aspect ratio (a smaller or larger render of the same picture); where the
+  // other side would leave 1...kMaxImageSide pixels, the picture cannot be kept, and clamping it silently would
+  // squash it: a usage error that says so.
   const double aspect = double(s.width) / double(s.height);
-  const auto follow = [](double v) { return static_cast<int>(std::clamp(std::lround(v), 1L, long(kMaxImageSide))); };
+  const auto follow = [&](double v, const char* given, int n, const char* side, const char* other) {
+    if (std::lround(v) < 1 || std::lround(v) > kMaxImageSide) {
+      char need[32];
+      std::snprintf(need, sizeof need, v >= 1 ? "%.0f" : "%.2g", v);
+      throw std::invalid_argument(std::string(given) + " " + std::to_string(n) + " alone keeps the scene's " +
+                                  std::to_string(s.width) + " x " + std::to_string(s.height) + " aspect ratio, " +
+                                  "which needs a " + side + " of " + need + " pixels, outside 1 to " +
+                                  std::to_string(kMaxImageSide) + ": give " + other + " as well");
+    }
+    return static_cast<int>(std::lround(v));
+  };
+  if (o.width && !o.height) s.height = follow(*o.width / aspect, "--width", *o.width, "height", "--height");
+  if (o.height && !o.width) s.width = follow(*o.height * aspect, "--height", *o.height, "width", "--width");
   if (o.width) s.width = *o.width;
   if (o.height) s.height = *o.height;
-  if (o.width && !o.height) s.height = follow(*o.width / aspect);
-  if (o.height && !o.width) s.width = follow(*o.height * aspect);
   if (o.threads) s.threads = *o.threads;
   // --spp alone asks for that many samples, over a scene file's `time`; with --time too, whichever comes first.
   if (o.spp && !o.time) s.time_budget = 0;

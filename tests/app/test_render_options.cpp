@@ -118,9 +118,23 @@ TEST(RenderOptions, WidthOrHeightAloneKeepsTheAspectRatio) {
   EXPECT_EQ(size(200, std::nullopt), (std::pair{200, 50}));
   EXPECT_EQ(size(std::nullopt, 50), (std::pair{200, 50}));
   EXPECT_EQ(size(30, std::nullopt), (std::pair{30, 8}));   // 7.5 rounds to 8
-  EXPECT_EQ(size(2, std::nullopt), (std::pair{2, 1}));     // never below one pixel
+  EXPECT_EQ(size(2, std::nullopt), (std::pair{2, 1}));     // 0.5 rounds to one pixel
   EXPECT_EQ(size(64, 64), (std::pair{64, 64}));            // both given: as given
-  EXPECT_EQ(size(std::nullopt, 16384), (std::pair{16384, 16384}));  // clamped to the largest side
+  EXPECT_EQ(size(std::nullopt, 4096), (std::pair{16384, 4096}));  // the largest side, exactly
+  // A side the aspect ratio would put beyond 1...16384 pixels: a usage error, not a squashed picture (it was clamped
+  // silently, 16384 x 20 for a 16000 x 10 scene's --height 20).
+  const auto error = [&](std::optional<int> w, std::optional<int> h) {
+    try {
+      size(w, h);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error(std::nullopt, 4097), "--height 4097 alone keeps the scene's 400 x 100 aspect ratio, which needs a "
+                                       "width of 16388 pixels, outside 1 to 16384: give --width as well");
+  EXPECT_EQ(error(1, std::nullopt), "--width 1 alone keeps the scene's 400 x 100 aspect ratio, which needs a height "
+                                    "of 0.25 pixels, outside 1 to 16384: give --height as well");
 }
 
 TEST(RenderOptions, UnknownNamesAreErrorsListingTheValidOnes) {
