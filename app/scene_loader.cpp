@@ -179,14 +179,19 @@ std::unique_ptr<Scene> load_json_scene(const std::string& text, const std::strin
 // The camera `wanted` names (SceneLoadOptions::camera) among the file's; throws std::invalid_argument listing them.
 const GltfCamera& choose_camera(const GltfScene& gltf, const std::string& wanted, const std::string& path) {
   const bool number = wanted.find_first_not_of("0123456789") == std::string::npos;
+  // By number, or by the node's name, else the camera object's (Blender names them apart: "Camera.001" / "Camera").
   for (size_t i = 0; i < gltf.cameras.size(); ++i)
     if (number ? wanted == std::to_string(i) : wanted == gltf.cameras[i].name) return gltf.cameras[i];
+  for (size_t i = 0; i < gltf.cameras.size() && !number; ++i)
+    if (wanted == gltf.cameras[i].camera_name) return gltf.cameras[i];
   std::ostringstream list;
   for (size_t i = 0; i < gltf.cameras.size(); ++i) {
     const GltfCamera& c = gltf.cameras[i];
     list << (i ? ", " : "") << i;
     if (!c.name.empty()) list << " '" << c.name << "'";
-    list << " (" << c.path << ")";
+    list << " (" << c.path;
+    if (!c.camera_name.empty() && c.camera_name != c.name) list << ", camera '" << c.camera_name << "'";
+    list << ")";
   }
   throw std::invalid_argument("--camera: " + path + " has no camera '" + wanted + "'; " +
                               (gltf.cameras.empty() ? "it has no perspective camera" : "its cameras: " + list.str()));
@@ -205,7 +210,10 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadO
   scene->input_images = gltf.image_files;
   if (gltf.meshes.empty()) throw SceneError(path, "", "scene is empty: the glTF file has no triangle meshes");
   std::string camera_at;  // the chosen camera's glTF path, for errors
-  if (!options.camera.empty()) {
+  if (options.camera == "0" && gltf.cameras.empty()) {  // "0 = the default": the framing camera here
+    std::cerr << path << ": warning: --camera 0: the file has no perspective camera; rendering through the framing "
+              << "camera, as without --camera\n";
+  } else if (!options.camera.empty()) {
     const GltfCamera& c = choose_camera(gltf, options.camera, path);
     gltf.camera = c.camera;
     gltf.camera_aspect = c.aspect;

@@ -303,6 +303,22 @@ TEST(GltfModels, EveryPerspectiveCameraIsListedAndCanBeChosen) {
   }
   EXPECT_THROW(load_scene(std::string(LUMIS_SOURCE_DIR) + "/scenes/cornell-sphere.json", SceneLoadOptions{"0"}),
                std::invalid_argument);
+  // MultiUVTest's one camera is node 'Correction_Camera' holding camera 'Camera': either name chooses it (the
+  // camera's was refused), and the list shows both.
+  const std::string multi = model("MultiUVTest/glTF/MultiUVTest.gltf");
+  const GltfScene uv = load_gltf(multi);
+  ASSERT_EQ(uv.cameras.size(), 1u);
+  EXPECT_EQ(uv.cameras[0].name, "Correction_Camera");
+  EXPECT_EQ(uv.cameras[0].camera_name, "Camera");
+  expect_vec(load_scene(multi, SceneLoadOptions{"Camera"})->camera.from, uv.cameras[0].camera.from);
+  expect_vec(load_scene(multi, SceneLoadOptions{"Correction_Camera"})->camera.from, uv.cameras[0].camera.from);
+  try {
+    load_scene(multi, SceneLoadOptions{"Lens"});
+    FAIL() << "camera 'Lens' accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("0 'Correction_Camera' (nodes["), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(", camera 'Camera')"), std::string::npos) << e.what();
+  }
 }
 
 TEST(GltfModels, Materials) {

@@ -26,6 +26,16 @@ TEST_F(SceneLoader, GltfFileAloneGetsFramingCameraAndWhiteSky) {
   EXPECT_GT(length(scene->camera.from), std::sqrt(0.75f));
 }
 
+// `--camera 0` is "the default": for a file without cameras, the framing camera (with a warning), not an error; any
+// other number still is one.
+TEST_F(SceneLoader, CameraZeroOfAFileWithoutCamerasIsTheFramingCamera) {
+  const auto framed = load_scene(kBoxGlb);
+  const auto zero = load_scene(kBoxGlb, SceneLoadOptions{"0"});
+  EXPECT_EQ(zero->camera.from, framed->camera.from);
+  EXPECT_EQ(zero->camera.to, framed->camera.to);
+  EXPECT_THROW(load_scene(kBoxGlb, SceneLoadOptions{"1"}), std::invalid_argument);
+}
+
 TEST_F(SceneLoader, GltfEmissiveMeshesBecomeMeshLightsAndNoSkyIsAdded) {
   const auto scene = load_scene(kAssets + "/gltf/EmissiveStrengthTest/glTF-Binary/EmissiveStrengthTest.glb");
   EXPECT_EQ(scene->environment, -1);
