@@ -1,6 +1,7 @@
 // Rendering for `lumis compare`: one variant at a time, and the nee_mis reference with its cache
 // (app/compare_internal.h).
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -60,8 +61,12 @@ Image cached_reference(Scene& scene, const CompareArgs& args, const RenderSettin
   const uint32_t ref_spp = args.reference_spp ? *args.reference_spp
                                               : static_cast<uint32_t>(std::clamp<uint64_t>(
                                                     16 * uint64_t(base.spp), 256, uint64_t(1) << 30));
-  // The camera chosen in a glTF file changes the image as the file's bytes do.
-  const std::string camera = args.overrides.camera.empty() ? "" : "\n--camera " + args.overrides.camera;
+  // The camera chosen in a glTF file changes the image as the file's bytes do: its numbers are hashed, not the
+  // --camera spelling, so that a camera given by number and by name shares one reference.
+  const Camera& c = scene.camera;
+  char camera[256];
+  std::snprintf(camera, sizeof camera, "\ncamera %a %a %a, %a %a %a, %a %a %a, %a, %a", c.from.x, c.from.y, c.from.z,
+                c.to.x, c.to.y, c.to.z, c.up.x, c.up.y, c.up.z, c.fov_y_degrees, c.near_clip);
   const std::string hash = reference_hash(read_file_bytes(scene_path) + camera, base, ref_spp);
   const fs::path exr = dir / "reference.exr", meta = dir / "reference.json";
   bool cached = false;
@@ -87,6 +92,7 @@ Image cached_reference(Scene& scene, const CompareArgs& args, const RenderSettin
     write_image(exr.string(), reference);
     nlohmann::json j = {{"hash", hash}, {"scene", scene_path}, {"key", reference_key(base, ref_spp)},
                         {"seconds", r.stats.seconds}};
+    if (!args.overrides.camera.empty()) j["key"]["camera"] = args.overrides.camera;  // render's --camera
     write_text(meta, j.dump(2) + "\n");
   } else {
     log("reusing cached reference " + exr.string());

@@ -209,7 +209,8 @@ expect 0 "$LUMIS" render "$T/instant.json" --width 8 --height 8 --max-depth 1 --
   --seed "$ref_seed" -q -o "$T/instant/again.exr"
 expect 0 "$LUMIS" diff "$T/instant/again.exr" "$T/instant/reference.exr" --threshold 0
 
-# The cached reference belongs to one camera of a glTF file: another --camera renders a new one.
+# The cached reference belongs to one camera of a glTF file: another --camera renders a new one, and reference.json's
+# key names it (for `lumis render --camera`).
 python3 - "$T/cams.gltf" <<'PY'
 import base64, json, struct, sys
 data = struct.pack("<9f", -1, -1, -2, 1, -1, -2, 0, 1, -2)
@@ -220,8 +221,9 @@ gltf = {
     "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [-1, -1, -2], "max": [1, 1, -2]}],
     "materials": [{"emissiveFactor": [1, 1, 1]}],
     "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
-    "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.01}}] * 2,
-    "nodes": [{"mesh": 0}, {"camera": 0}, {"camera": 1, "translation": [0.5, 0, 0]}],
+    "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.01}},
+                {"name": "Lens", "type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.01}}],
+    "nodes": [{"mesh": 0}, {"camera": 0}, {"name": "Side", "camera": 1, "translation": [0.5, 0, 0]}],
     "scenes": [{"nodes": [0, 1, 2]}],
     "scene": 0,
 }
@@ -233,6 +235,12 @@ expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera 1
 grep -q '"source": "rendered"' "$T/cams/report.json" || fail "reference reused for another camera"
 expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera 1
 grep -q '"source": "cached"' "$T/cams/report.json" || fail "reference not reused for the same camera"
+grep -q '"camera": "1"' "$T/cams/reference.json" || fail "reference.json's key lacks the camera: $(cat "$T/cams/reference.json")"
+# The same camera by its node's name or its camera's name: the cache is the camera's, not its spelling's.
+for name in Side Lens; do
+  expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera "$name"
+  grep -q '"source": "cached"' "$T/cams/report.json" || fail "reference not reused for camera 1 named $name"
+done
 
 # A run that fails part way leaves no report of the earlier run beside images it replaced: the report goes first.
 SMALL8=(--width 8 --height 8 --spp 1 --reference-spp 4 --integrators bsdf,nee_mis -q)
