@@ -116,6 +116,10 @@ std::string expand_plus_uri(const std::string& path, void* plus_uris);
 
 // --- nodes (gltf_nodes.cpp) ---
 
+/// A node with both "matrix" and translation/rotation/scale in the glTF JSON `text` is an error (tinygltf reads the
+/// matrix and drops the rest silently). The text is parsed again only when it holds "matrix".
+void check_matrix_nodes(const Context& ctx, const std::string& text);
+
 /// A node's transform in its parent's space: `matrix`, or translation x rotation x scale (rotation normalised).
 Mat4 local_transform(const Context& ctx, const tinygltf::Node& node, const std::string& at);
 /// EXT_mesh_gpu_instancing: one matrix per instance (T R S, in the node's space), or none when absent.

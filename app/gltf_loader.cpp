@@ -102,6 +102,7 @@ void parse_file(Context& ctx, const std::string& path) {
   const bool binary = std::string(magic, 4) == "glTF";
   const std::optional<std::string> text = json_text(path, binary);
   if (text) check_depth(ctx, *text, binary);
+  if (text) check_matrix_nodes(ctx, *text);
   PlusUris plus = text ? plus_uris(ctx, *text) : PlusUris{};
 
   tinygltf::TinyGLTF loader;
@@ -209,6 +210,8 @@ GltfScene load_gltf(const std::string& path, const Mat4& transform) {
       if (roots[k] < 0 || static_cast<size_t>(roots[k]) >= model.nodes.size())
         ctx.fail(at, "node index " + std::to_string(roots[k]) + " out of range");
       if (parent[roots[k]] >= 0) ctx.fail(at, "scene nodes must be roots, but this node has a parent");
+      if (std::find(roots.begin(), roots.begin() + k, roots[k]) != roots.begin() + k)
+        ctx.fail(at, "node " + std::to_string(roots[k]) + " is listed twice (it would be drawn twice)");
     }
   } else {
     for (size_t i = 0; i < model.nodes.size(); ++i)

@@ -1,5 +1,6 @@
 // glTF materials and textures: pbrMetallicRoughness, emissive (with KHR_materials_emissive_strength), normal maps,
 // alpha modes, samplers and KHR_texture_transform. Each (image, colour space) pair is decoded once and shared.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <set>
@@ -222,6 +223,13 @@ std::vector<GltfMaterial> convert_materials(Context& ctx) {
     p.roughness = static_cast<float>(pbr.roughnessFactor);  // out of [0, 1]: clamped where used (make_pbr_bsdf)
     if (!std::isfinite(p.base_alpha) || !std::isfinite(p.metallic) || !std::isfinite(p.roughness))
       ctx.fail(at + ".pbrMetallicRoughness", "factors must be finite numbers");
+    // glTF bounds these factors to [0, 1]; a value outside is clamped where it is used (the BSDF), with a warning
+    // for the first material that has one.
+    const auto outside = [](double v) { return !(v >= 0 && v <= 1); };
+    if (std::any_of(pbr.baseColorFactor.begin(), pbr.baseColorFactor.end(), outside) ||
+        outside(pbr.metallicFactor) || outside(pbr.roughnessFactor))
+      ctx.warn_once("factor range", at + ".pbrMetallicRoughness: a factor outside [0, 1] is clamped to it (glTF "
+                                         "allows 0...1 for baseColorFactor, metallicFactor and roughnessFactor)");
     if (pbr.baseColorTexture.index >= 0)
       p.base_color_texture = make_texture(ctx, images, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
                                           pbr.baseColorTexture.extensions, true,

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "app/gltf_internal.h"
 #include "core/transform.h"
 
@@ -15,6 +17,15 @@ Mat4 local_transform(const Context& ctx, const tinygltf::Node& node, const std::
   Mat4 m;
   if (!node.matrix.empty()) {
     if (node.matrix.size() != 16) ctx.fail(at + ".matrix", "expected 16 numbers");
+    // Column-major: elements 3, 7, 11, 15 are the last row, which an affine transform (all glTF allows) has as
+    // (0, 0, 0, 1); a projective one would be read as if it were affine.
+    const std::vector<double>& e = node.matrix;
+    if (std::abs(e[3]) > 1e-6 || std::abs(e[7]) > 1e-6 || std::abs(e[11]) > 1e-6 || std::abs(e[15] - 1) > 1e-6) {
+      char row[96];
+      std::snprintf(row, sizeof row, "(%g, %g, %g, %g)", e[3], e[7], e[11], e[15]);
+      ctx.fail(at + ".matrix", std::string("not an affine transform: its last row is ") + row +
+                                   ", expected (0, 0, 0, 1) (elements 3, 7, 11 and 15, column-major)");
+    }
     m = Mat4::from_column_major(node.matrix.data());
   } else {
     auto vec = [&](const std::vector<double>& v, size_t n, const char* name) {
@@ -50,6 +61,21 @@ Mat4 local_transform(const Context& ctx, const tinygltf::Node& node, const std::
   }
   if (!m.is_finite()) ctx.fail(at, "transform is not finite");
   return m;
+}
+
+void check_matrix_nodes(const Context& ctx, const std::string& text) {
+  if (text.find("\"matrix\"") == std::string::npos) return;  // the common case, without a second parse
+  const auto doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (!doc.is_object()) return;  // tinygltf reports it
+  const auto nodes = doc.find("nodes");
+  if (nodes == doc.end() || !nodes->is_array()) return;
+  for (size_t i = 0; i < nodes->size(); ++i) {
+    const auto& n = (*nodes)[i];
+    if (n.is_object() && n.contains("matrix") &&
+        (n.contains("translation") || n.contains("rotation") || n.contains("scale")))
+      ctx.fail(indexed("nodes", i), "has both \"matrix\" and translation/rotation/scale; glTF allows one or the "
+                                    "other (lumis's reader would use the matrix alone)");
+  }
 }
 
 /// EXT_mesh_gpu_instancing: one matrix per instance (T R S, in the node's space), or none when absent.

@@ -339,6 +339,20 @@ case("gltf_instancing_count_zero", ".gltf", embed(*variant(empty_instancing)),
      "expected at least 1 element (used by nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.TRANSLATION)")
 # A valid rotation whose components' squares overflow double (1e200): normalised, not rejected. Renders (exit 0).
 case("gltf_rotation_huge", ".gltf", embed(*variant(set_path(["nodes", 0, "rotation"], [1e200, 0, 0, 1e200]))), "", 0)
+# Found by a user's test (2026-12-06): glTF that breaks the spec in ways tinygltf accepts.
+case("gltf_matrix_and_trs", ".gltf",
+     embed(*variant(lambda d: d["nodes"][0].update(matrix=[1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1],
+                                                   translation=[1, 0, 0]))),
+     "nodes[0]: has both \"matrix\" and translation/rotation/scale")
+case("gltf_matrix_projective", ".gltf",
+     embed(*variant(set_path(["nodes", 0, "matrix"], [1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]))),
+     "nodes[0].matrix: not an affine transform: its last row is (1, 0, 0, 1)")
+case("gltf_scene_root_twice", ".gltf", embed(*variant(set_path(["scenes", 0, "nodes"], [0, 0]))),
+     "scenes[0].nodes[1]: node 0 is listed twice")
+case("gltf_factor_out_of_range", ".gltf",
+     embed(*variant(lambda d: d.update(materials=[{"pbrMetallicRoughness": {"roughnessFactor": 5}}]) or
+                    d["meshes"][0]["primitives"][0].update(material=0))),
+     "materials[0].pbrMetallicRoughness: a factor outside [0, 1] is clamped", 0)
 case("gltf_rotation_zero", ".gltf", embed(*variant(set_path(["nodes", 0, "rotation"], [0, 0, 0, 0]))),
      "nodes[0].rotation: expected a unit quaternion (x, y, z, w), found one of length 0")
 
