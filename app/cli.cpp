@@ -29,14 +29,9 @@ namespace {
 /// CLI11 check that a number option is finite: CLI::Range lets NaN through (every comparison with it is false).
 const CLI::Validator kFiniteNumber(finite_problem, "FINITE");
 
-/// CLI11 check for a file or name argument: an empty string (an unset shell variable, `-o ""`) is a usage error, not
-/// "not given", which would render the default scene or write the default output file.
+/// CLI11 check for a file or name argument (empty_problem).
 CLI::Validator non_empty(const std::string& expected) {
-  return CLI::Validator(
-      [expected](std::string& text) -> std::string {
-        return text.empty() ? "expected " + expected + ", found an empty string" : "";
-      },
-      "NONEMPTY");
+  return CLI::Validator([expected](std::string& text) { return empty_problem(text, expected); }, "NONEMPTY");
 }
 const CLI::Validator kNonEmpty = non_empty("a file name");
 

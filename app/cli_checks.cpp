@@ -8,6 +8,10 @@
 
 namespace lumis {
 
+std::string empty_problem(const std::string& text, const std::string& expected) {
+  return text.empty() ? "expected " + expected + ", found an empty string" : "";
+}
+
 std::string finite_problem(const std::string& text) {
   // CLI11 runs checks before conversion: parse as the option will (a whole string that is a number).
   try {

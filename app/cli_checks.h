@@ -7,6 +7,9 @@
 
 namespace lumis {
 
+/// An empty string where a file or camera name is expected (an unset shell variable, `-o ""`): a usage error, not
+/// "not given", which would render the default scene or write the default output file.
+std::string empty_problem(const std::string& text, const std::string& expected);
 /// A number that is not finite (NaN, inf); other text passes, for the option's own conversion to report.
 std::string finite_problem(const std::string& text);
 /// A number outside [lo, hi], described as `expected`; other text passes, as above.
