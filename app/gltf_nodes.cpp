@@ -6,8 +6,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "app/gltf_internal.h"
 #include "core/transform.h"
 
@@ -61,21 +59,6 @@ Mat4 local_transform(const Context& ctx, const tinygltf::Node& node, const std::
   }
   if (!m.is_finite()) ctx.fail(at, "transform is not finite");
   return m;
-}
-
-void check_matrix_nodes(const Context& ctx, const std::string& text) {
-  if (text.find("\"matrix\"") == std::string::npos) return;  // the common case, without a second parse
-  const auto doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (!doc.is_object()) return;  // tinygltf reports it
-  const auto nodes = doc.find("nodes");
-  if (nodes == doc.end() || !nodes->is_array()) return;
-  for (size_t i = 0; i < nodes->size(); ++i) {
-    const auto& n = (*nodes)[i];
-    if (n.is_object() && n.contains("matrix") &&
-        (n.contains("translation") || n.contains("rotation") || n.contains("scale")))
-      ctx.fail(indexed("nodes", i), "has both \"matrix\" and translation/rotation/scale; glTF allows one or the "
-                                    "other (lumis's reader would use the matrix alone)");
-  }
 }
 
 /// EXT_mesh_gpu_instancing: one matrix per instance (T R S, in the node's space), or none when absent.

@@ -347,6 +347,10 @@ case("gltf_matrix_and_trs", ".gltf",
 case("gltf_matrix_projective", ".gltf",
      embed(*variant(set_path(["nodes", 0, "matrix"], [1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]))),
      "nodes[0].matrix: not an affine transform: its last row is (1, 0, 0, 1)")
+case("gltf_accessor_offset_negative", ".gltf", embed(*variant(set_path(["accessors", 1, "byteOffset"], -12))),
+     "accessors[1].byteOffset: expected a whole number >= 0, found -12")  # tinygltf read it as 0
+case("gltf_bufferview_stride_negative", ".gltf", embed(*variant(set_path(["bufferViews", 0, "byteStride"], -4))),
+     "bufferViews[0].byteStride: expected a whole number >= 0, found -4")
 case("gltf_scene_root_twice", ".gltf", embed(*variant(set_path(["scenes", 0, "nodes"], [0, 0]))),
      "scenes[0].nodes[1]: node 0 is listed twice")
 case("gltf_factor_out_of_range", ".gltf",
