@@ -43,25 +43,33 @@ CLI::Validator number_in(double lo, double hi, const std::string& expected) {
 
 /// CLI11 check of a whole number in [lo, hi]: CLI::Range calls 1e3 or 1.5 "not in range" when they are no integer.
 CLI::Validator whole_in(long long lo, long long hi) {
-  return CLI::Validator([=](std::string& text) { return whole_problem(text, lo, hi); },
-                        "INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return CLI::Validator(
+      [=](std::string& text) {
+        std::string problem = whole_problem(text, lo, hi);
+        // The value checked is decimal; CLI11 converts with base 0, where "010" is octal 8: hand it the number read
+        // (a transform, which may rewrite the text; a check may not).
+        if (problem.empty()) text = std::to_string(std::stoll(text));
+        return problem;
+      },
+      "INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
 }
 
 /// The render options that override the scene file (render, compare and bench).
 void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
   cmd.add_option("--spp", o.spp, "Samples per pixel (given alone, it overrides a scene file's time budget)")
-      ->check(whole_in(1, 1 << 30));
+      ->transform(whole_in(1, 1 << 30));
   cmd.add_option("--integrator", o.integrator, "uniform | bsdf | light | mis | nee_mis");
   cmd.add_option("--max-depth", o.max_depth, "Scattering vertices per path (1 = direct lighting only)")
-      ->check(whole_in(1, 1024));
-  cmd.add_option("--rr-depth", o.rr_depth, "Russian roulette from this depth on (0 = off)")->check(whole_in(0, 1024));
+      ->transform(whole_in(1, 1024));
+  cmd.add_option("--rr-depth", o.rr_depth, "Russian roulette from this depth on (0 = off)")
+      ->transform(whole_in(0, 1024));
   cmd.add_option("--seed", o.seed, "Random seed, in [0, 4294967295]")
-      ->check(whole_in(0, 4294967295));
-  cmd.add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(whole_in(1, 1024));
+      ->transform(whole_in(0, 4294967295));
+  cmd.add_option("--threads", o.threads, "Worker threads (default: all cores)")->transform(whole_in(1, 1024));
   cmd.add_option("--width", o.width, "Image width in pixels (alone: the height keeps the scene's aspect ratio)")
-      ->check(whole_in(1, kMaxImageSide));
+      ->transform(whole_in(1, kMaxImageSide));
   cmd.add_option("--height", o.height, "Image height in pixels (alone: the width keeps the scene's aspect ratio)")
-      ->check(whole_in(1, kMaxImageSide));
+      ->transform(whole_in(1, kMaxImageSide));
   cmd.add_option("--sampler", o.sampler, "independent | stratified | sobol");
   cmd.add_option("--light-selection", o.light_selection, "uniform | power | importance");
   cmd.add_option("--mis-heuristic", o.mis_heuristic, "balance | power");
@@ -135,7 +143,7 @@ void register_warptest_command(CLI::App& app, int& exit_code) {
   // The chi-square test needs cells that expect 5 samples or more: uniform_sphere's 3200 equal cells need 16,000
   // samples; from 100,000 on, every warp at its default parameter has hundreds of such cells.
   cmd->add_option("--samples", args->samples, "Number of samples")
-      ->check(whole_in(100'000, 1'000'000'000))
+      ->transform(whole_in(100'000, 1'000'000'000))
       ->capture_default_str();
   cmd->add_option("-o,--output", args->out, "Histogram picture (PNG; .exr, .jpg and .hdr also work), '' for none")
       ->capture_default_str();
@@ -188,7 +196,7 @@ void register_compare_command(CLI::App& app, int& exit_code) {
       ->check(kNonEmpty);
   cmd->add_option("--reference-spp", args->reference_spp,
                   "Samples per pixel of the rendered nee_mis reference (default: 16 x spp, at least 256)")
-      ->check(whole_in(1, 1 << 30));
+      ->transform(whole_in(1, 1 << 30));
   cmd->add_option("--crop", args->crop, "x,y,w,h: add a row of zoomed crops of this region to montage.png");
   cmd->add_flag("--convergence", args->convergence,
                 "Also render each variant at 1, 2, 4, ... spp up to its own and plot error against time "
@@ -217,16 +225,18 @@ void register_bench_command(CLI::App& app, int& exit_code) {
                   "and the largest shared glTF models)")
       ->check(kNonEmpty);
   cmd->add_option("--json", o.json_out, "Write the results as JSON to this file")->check(kNonEmpty);
-  CLI::Option* repeat = cmd->add_option("--repeat", o.repeat, "Repetitions; every figure is their median (default 3; 1 with --quick)")->check(whole_in(1, 100));
+  CLI::Option* repeat =
+      cmd->add_option("--repeat", o.repeat, "Repetitions; every figure is their median (default 3; 1 with --quick)")
+          ->transform(whole_in(1, 100));
   cmd->add_flag("--quick", o.quick,
                 "Tiny settings (32x32, 1 spp, 1 repetition, small raw-ray batches, a 20k-triangle @large; of the "
                 "default scenes only @large and cornell-sphere): a smoke test, not a measurement");
   cmd->add_option("--assets", o.assets_dir, "Shared assets folder with gltf/ (default: <source>/../shared/assets)")
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--large-triangles", o.large_triangles, "Triangles in the generated scene (at least)")
-      ->check(whole_in(100, 100'000'000));
+      ->transform(whole_in(100, 100'000'000));
   cmd->add_option("--raw-rays", o.raw_rays, "Rays per kind for the raw Embree measurement (default 524288)")
-      ->check(whole_in(16, 1 << 26));
+      ->transform(whole_in(16, 1 << 26));
   cmd->add_option("--write-large-scene", a->write_large,
                   "Only write the generated large scene to this .glb (with --large-triangles) and exit")
       ->check(CLI::Validator(

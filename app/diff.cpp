@@ -28,11 +28,12 @@ std::vector<int> variance_channels(const Image& img) {
 }  // namespace
 
 bool is_grey(const Image& img) {
-  // OpenImageIO names a greyscale PNG's one channel Y (and its alpha A). Y beside other channels is not grey: in an
+  // OpenImageIO names a greyscale PNG's one channel Y (and its alpha A). Y beside R, G, B or X is not grey: in an
   // XYZ image it is one of three colour channels, and R, G, B taken as Y three times would compare the wrong thing.
+  // Other channels (a depth Z, normals, variance) are ignored, as they are beside R, G, B.
   if (img.channel_index("Y") < 0) return false;
-  for (const std::string& c : img.channel_names)
-    if (c != "Y" && c != "A") return false;
+  for (const char* c : {"R", "G", "B", "X"})
+    if (img.channel_index(c) >= 0) return false;
   return true;
 }
 

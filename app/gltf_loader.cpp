@@ -88,8 +88,10 @@ void explain_rejection(const Context& ctx, const std::string& path, bool binary)
   if (auto b = doc.find("buffers"); b != doc.end() && b->is_array())
     for (size_t i = 0; i < b->size(); ++i) {
       const auto& buffer = (*b)[i];
+      // A .glb's buffer with "uri": "" is its BIN chunk to tinygltf, so the rejection lies elsewhere.
       if (buffer.is_object() && buffer.contains("uri") && buffer["uri"].is_string() &&
-          buffer.contains("byteLength") && buffer["byteLength"].is_number_unsigned())
+          buffer.contains("byteLength") && buffer["byteLength"].is_number_unsigned() &&
+          !(binary && buffer["uri"].get<std::string>().empty()))
         check_buffer_uri(ctx, i, buffer["uri"], buffer["byteLength"], /*explaining=*/true);
     }
 }
@@ -206,12 +208,13 @@ GltfScene load_gltf(const std::string& path, const Mat4& transform) {
     if (static_cast<size_t>(s) >= model.scenes.size())
       ctx.fail("scene", "scene index " + std::to_string(s) + " out of range");
     roots = model.scenes[s].nodes;
+    std::vector<char> listed(model.nodes.size(), 0);
     for (size_t k = 0; k < roots.size(); ++k) {
       const std::string at = indexed("scenes", s) + indexed(".nodes", k);
       if (roots[k] < 0 || static_cast<size_t>(roots[k]) >= model.nodes.size())
         ctx.fail(at, "node index " + std::to_string(roots[k]) + " out of range");
       if (parent[roots[k]] >= 0) ctx.fail(at, "scene nodes must be roots, but this node has a parent");
-      if (std::find(roots.begin(), roots.begin() + k, roots[k]) != roots.begin() + k)
+      if (listed[roots[k]]++)
         ctx.fail(at, "node " + std::to_string(roots[k]) + " is listed twice (it would be drawn twice)");
     }
   } else {

@@ -220,7 +220,7 @@ std::vector<GltfMaterial> convert_materials(Context& ctx) {
     p.base_color = color3(ctx, rgb, at + ".pbrMetallicRoughness.baseColorFactor");
     p.base_alpha = static_cast<float>(pbr.baseColorFactor[3]);
     p.metallic = static_cast<float>(pbr.metallicFactor);
-    p.roughness = static_cast<float>(pbr.roughnessFactor);  // out of [0, 1]: clamped where used (make_pbr_bsdf)
+    p.roughness = static_cast<float>(pbr.roughnessFactor);
     if (!std::isfinite(p.base_alpha) || !std::isfinite(p.metallic) || !std::isfinite(p.roughness))
       ctx.fail(at + ".pbrMetallicRoughness", "factors must be finite numbers");
     // glTF bounds these factors to [0, 1]; a value outside is clamped where it is used (the BSDF), with a warning
@@ -230,6 +230,12 @@ std::vector<GltfMaterial> convert_materials(Context& ctx) {
         outside(pbr.metallicFactor) || outside(pbr.roughnessFactor))
       ctx.warn_once("factor range", at + ".pbrMetallicRoughness: a factor outside [0, 1] is clamped to it (glTF "
                                          "allows 0...1 for baseColorFactor, metallicFactor and roughnessFactor)");
+    // Clamped here, before a texture multiplies it (the BSDF clamps only the product) and the alpha cutoff sees it.
+    const auto unit = [](float v) { return std::clamp(v, 0.0f, 1.0f); };
+    for (int c = 0; c < 3; ++c) p.base_color[c] = unit(p.base_color[c]);
+    p.base_alpha = unit(p.base_alpha);
+    p.metallic = unit(p.metallic);
+    p.roughness = unit(p.roughness);
     if (pbr.baseColorTexture.index >= 0)
       p.base_color_texture = make_texture(ctx, images, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
                                           pbr.baseColorTexture.extensions, true,

@@ -79,7 +79,8 @@ void check_data_uri(const Context& ctx, const std::string& at, const std::string
 void check_buffer_uri(const Context& ctx, size_t i, const std::string& uri, uint64_t byte_length, bool explaining) {
   const std::string at = indexed("buffers", i);
   if (uri.empty()) {
-    if (explaining) ctx.fail(at + ".uri", "is empty: expected a file name or a data: URI (a .glb's own buffer has none)");
+    if (explaining)
+      ctx.fail(at + ".uri", "is empty: expected a file name or a data: URI (a .glb's own buffer has none)");
     return;
   }
   if (uri.rfind("data:", 0) == 0) {

@@ -1,5 +1,6 @@
-// The "shapes" and "lights" sections (a "gltf" shape: app/json_gltf.cpp). Emitters are geometry too: every light except the environment adds a sphere or
-// mesh carrying its light index, so that a BSDF-sampled ray that hits it knows which light it found.
+// The "shapes" and "lights" sections (a "gltf" shape: app/json_gltf.cpp). Emitters are geometry too: every light
+// except the environment adds a sphere or mesh carrying its light index, so that a BSDF-sampled ray that hits it
+// knows which light it found.
 #include "app/json_scene.h"
 
 #include <iostream>

@@ -24,7 +24,8 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
   const auto follow = [&](double v, const char* given, int n, const char* side, const char* other) {
     if (std::lround(v) < 1 || std::lround(v) > kMaxImageSide) {
       char need[32];
-      std::snprintf(need, sizeof need, v >= 1 ? "%.0f" : "%.2g", v);
+      if (v >= 1) std::snprintf(need, sizeof need, "%ld", std::lround(v));  // the number tested, rounded alike
+      else std::snprintf(need, sizeof need, "%.2g", v);
       throw std::invalid_argument(std::string(given) + " " + std::to_string(n) + " alone keeps the scene's " +
                                   std::to_string(s.width) + " x " + std::to_string(s.height) + " aspect ratio, " +
                                   "which needs a " + side + " of " + need + " pixels, outside 1 to " +

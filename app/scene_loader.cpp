@@ -182,8 +182,16 @@ const GltfCamera& choose_camera(const GltfScene& gltf, const std::string& wanted
   // By number, or by the node's name, else the camera object's (Blender names them apart: "Camera.001" / "Camera").
   for (size_t i = 0; i < gltf.cameras.size(); ++i)
     if (number ? wanted == std::to_string(i) : wanted == gltf.cameras[i].name) return gltf.cameras[i];
+  std::vector<size_t> by_camera;  // one camera object may sit in several nodes: then its name does not say which
   for (size_t i = 0; i < gltf.cameras.size() && !number; ++i)
-    if (wanted == gltf.cameras[i].camera_name) return gltf.cameras[i];
+    if (wanted == gltf.cameras[i].camera_name) by_camera.push_back(i);
+  if (by_camera.size() == 1) return gltf.cameras[by_camera[0]];
+  if (by_camera.size() > 1) {
+    std::ostringstream nodes;
+    for (size_t i : by_camera) nodes << (i == by_camera.front() ? "" : ", ") << i << " (" << gltf.cameras[i].path << ")";
+    throw std::invalid_argument("--camera: camera '" + wanted + "' of " + path + " is in several nodes: " + nodes.str() +
+                                "; give the number or the node's name");
+  }
   std::ostringstream list;
   for (size_t i = 0; i < gltf.cameras.size(); ++i) {
     const GltfCamera& c = gltf.cameras[i];

@@ -149,6 +149,9 @@ TEST(DiffMetrics, YIsGreyOnlyWithoutOtherColourChannels) {
   EXPECT_EQ(compute_metrics(grey_alpha, rgb).mse, 0.0);
   Image xyz(2, 1, {"X", "Y", "Z"});
   EXPECT_FALSE(is_grey(xyz));
+  // Channels that are not colour beside a grey Y (a depth Z, normals) are ignored, as they are beside R, G, B.
+  EXPECT_TRUE(is_grey(Image(2, 1, {"Y", "Z", "N.X", "N.Y", "N.Z"})));
+  EXPECT_FALSE(is_grey(Image(2, 1, {"R", "G", "B", "Y"})));
   DiffOptions o;
   o.name_a = "xyz.exr";
   try {

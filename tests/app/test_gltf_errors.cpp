@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/gltf_loader.h"
+#include "app/scene_loader.h"
 #include "app/scene_error.h"
 #include "tests/app/gltf_synthetic.h"
 #include "tests/app/gltf_test_util.h"
@@ -205,3 +206,62 @@ TEST_F(GltfFiles, ErrorsNameTheGltfPath) {
   }
 }
 
+// Found by review (2026-12-06): material factors outside [0, 1] are clamped at load, before a texture multiplies
+// them (the BSDF clamps only the product: a factor of 2 with a texel of 0.3 gave 0.6) and before the alpha cutoff
+// sees the base alpha; a .glb buffer with "uri": "" is its BIN chunk to tinygltf, so another fault in the file is
+// not blamed on the uri; one camera object in two nodes is ambiguous by its name.
+TEST_F(GltfFiles, FactorsClampedAtLoadGlbEmptyUriAndSharedCameraNames) {
+  Triangle t;
+  const std::string mat = R"(,"materials":[{"pbrMetallicRoughness":{"baseColorFactor":[2,0.5,-1,3],)"
+                          R"("metallicFactor":-1,"roughnessFactor":5}}])";
+  const GltfScene s = load_gltf(simple("f.gltf", t.bin, t.views, t.accessors,
+                                       R"({"attributes":{"POSITION":0,"NORMAL":1},"indices":2,"material":0})",
+                                       R"({"mesh":0})", mat));
+  ASSERT_GE(s.materials.size(), 1u);
+  const PbrParams& p = s.materials[0].params;
+  EXPECT_EQ(p.base_color[0], 1.0f);
+  EXPECT_EQ(p.base_color[1], 0.5f);
+  EXPECT_EQ(p.base_color[2], 0.0f);
+  EXPECT_EQ(p.base_alpha, 1.0f);
+  EXPECT_EQ(p.metallic, 0.0f);
+  EXPECT_EQ(p.roughness, 1.0f);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("materials[0].pbrMetallicRoughness: a factor outside [0, 1] is clamped"),
+            std::string::npos) << s.warnings[0];
+
+  // A .glb whose buffer says "uri": "" renders from its BIN chunk; with a bufferView lacking byteLength, the error
+  // is tinygltf's about that, not "buffers[0].uri: is empty".
+  const std::string json = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+                           R"("meshes":[{"primitives":[)" + std::string(Triangle::prim) + R"(]}],"bufferViews":)" +
+                           t.views + R"(,"accessors":)" + t.accessors + R"(,"buffers":[{"byteLength":)" +
+                           std::to_string(t.bin.bytes.size()) + R"(,"uri":""}]})";
+  EXPECT_EQ(load_gltf(write("empty-uri.glb", make_glb(json, t.bin.bytes))).meshes.size(), 1u);
+  std::string broken = json;
+  broken.replace(broken.find(R"(,"byteLength":36)"), 16, "");
+  try {
+    load_gltf(write("empty-uri-broken.glb", make_glb(broken, t.bin.bytes)));
+    ADD_FAILURE() << "a bufferView without byteLength accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()).find("is empty"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("byteLength"), std::string::npos) << e.what();
+  }
+
+  // Camera object 0, named "Lens", in nodes 1 and 2: "Lens" is ambiguous; the node names and numbers are not.
+  const std::string cams =
+      R"(,"cameras":[{"name":"Lens","type":"perspective","perspective":{"yfov":0.8,"znear":0.01}}])";
+  std::string text = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1,2]}],"nodes":[{"mesh":0},)"
+                     R"({"name":"Left","camera":0,"translation":[0,0,3]},)"
+                     R"({"name":"Right","camera":0,"translation":[1,0,3]}],"meshes":[{"primitives":[)" +
+                     std::string(Triangle::prim) + R"(]}],"buffers":[)" + t.bin.buffer_json() + R"(],"bufferViews":)" +
+                     t.views + R"(,"accessors":)" + t.accessors + cams + "}";
+  const std::string two = write("cams.gltf", text);
+  EXPECT_EQ(load_scene(two, SceneLoadOptions{"Right"})->camera.from, Vec3(1, 0, 3));
+  try {
+    load_scene(two, SceneLoadOptions{"Lens"});
+    ADD_FAILURE() << "an ambiguous camera name accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("camera 'Lens' of " + two + " is in several nodes: 0 (nodes[1]), 1 "
+                                         "(nodes[2]); give the number or the node's name"),
+              std::string::npos) << e.what();
+  }
+}

@@ -133,6 +133,19 @@ TEST(RenderOptions, WidthOrHeightAloneKeepsTheAspectRatio) {
   };
   EXPECT_EQ(error(std::nullopt, 4097), "--height 4097 alone keeps the scene's 400 x 100 aspect ratio, which needs a "
                                        "width of 16388 pixels, outside 1 to 16384: give --width as well");
+  // The size named is the one tested, rounded alike: 10923 x 1.5 = 16384.5 rounds up to 16385 (printf's "%.0f"
+  // rounds half to even and said 16384, "outside 1 to 16384").
+  RenderSettings wide;
+  wide.width = 1536;
+  wide.height = 1024;
+  RenderOverrides tall;
+  tall.height = 10923;
+  try {
+    apply_overrides(tall, wide);
+    ADD_FAILURE() << "--height 10923 of a 3:2 scene accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("needs a width of 16385 pixels"), std::string::npos) << e.what();
+  }
   EXPECT_EQ(error(1, std::nullopt), "--width 1 alone keeps the scene's 400 x 100 aspect ratio, which needs a height "
                                     "of 0.25 pixels, outside 1 to 16384: give --height as well");
 }

@@ -235,7 +235,8 @@ expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera 1
 grep -q '"source": "rendered"' "$T/cams/report.json" || fail "reference reused for another camera"
 expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera 1
 grep -q '"source": "cached"' "$T/cams/report.json" || fail "reference not reused for the same camera"
-grep -q '"camera": "1"' "$T/cams/reference.json" || fail "reference.json's key lacks the camera: $(cat "$T/cams/reference.json")"
+grep -q '"camera": "1"' "$T/cams/reference.json" ||
+  fail "reference.json's key lacks the camera: $(cat "$T/cams/reference.json")"
 # The same camera by its node's name or its camera's name: the cache is the camera's, not its spelling's.
 for name in Side Lens; do
   expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera "$name"

@@ -42,6 +42,12 @@ for bad in 0 -2 1.5; do
 done
 [ ! -e "$T/cmp" ] || fail "a usage error made compare's folder"
 expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1000 --max-depth 1 -q -o "$T/ok.png"
+# A leading zero is decimal, as the range check reads it: CLI11's own conversion took "010" as octal 8 (after the
+# check passed it as 10) and refused "08" with "Could not convert".
+need iinfo openimageio-tools
+expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 010 --seed 010 --max-depth 08 -q -o "$T/z.exr"
+iinfo -v "$T/z.exr" | grep -q 'lumis:spp: "10"' || fail "--spp 010 did not take 10 samples: $(iinfo -v "$T/z.exr")"
+iinfo -v "$T/z.exr" | grep -q 'lumis:seed: "10"' || fail "--seed 010 is not seed 10: $(iinfo -v "$T/z.exr")"
 
 # --exposure applies to PNG and JPEG only: with .exr or .hdr a warning says it is ignored (the image is written).
 for ext in exr hdr HDR; do
