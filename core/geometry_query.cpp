@@ -1,5 +1,6 @@
-// Geometry's closest-hit queries for many rays: camera packets (intersect_packets, intersect16) and a bounce's
-// rays (intersect_each), traced chunk by chunk with their hit records filled in a pipeline behind the tracing.
+// Geometry's ray queries: one ray (intersect, occluded, all_light_hits), shadow packets (occluded16), and closest
+// hits for many rays: camera packets (intersect_packets, intersect16) and a bounce's rays (intersect_each), traced
+// chunk by chunk with their hit records filled in a pipeline behind the tracing.
 #include "core/embree_util.h"
 #include "core/geometry.h"
 #include "core/geometry_impl.h"
@@ -155,6 +156,79 @@ void Geometry::fill16(const Ray* rays, const int* lanes, int first, int m, const
     fill_hit(raw[i].geom_id, raw[i].prim_id, raw[i].u, raw[i].v, hit);
     hit.front = dot(rays[k].d, hit.ng) < 0;
   }
+}
+
+void Geometry::record_queries(QueryLog* log) { t_query_log = log; }
+
+bool Geometry::intersect(const Ray& ray, Hit& hit) const {
+  if (!ray_is_valid(ray)) return false;
+  if (QueryLog* log = t_query_log) [[unlikely]] log->add(QueryLog::Call::Intersect1, &ray, 1);
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh = to_embree(ray);
+  rtcIntersect1(impl_->scene, &ctx, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.t = rh.ray.tfar;
+  hit.p = ray.o + ray.d * hit.t;
+  fill_hit(rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, hit);
+  hit.front = dot(ray.d, hit.ng) < 0;
+  return true;
+}
+
+bool Geometry::occluded(const Ray& ray) const {
+  if (!ray_is_valid(ray)) return true;
+  if (QueryLog* log = t_query_log) [[unlikely]] log->add(QueryLog::Call::Occluded1, &ray, 1);
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRay r = to_embree(ray).ray;
+  rtcOccluded1(impl_->scene, &ctx, &r);
+  return r.tfar < 0;  // Embree sets tfar = -inf on an occluded ray
+}
+
+void Geometry::occluded16(const Ray* rays, int n, bool* occluded) const {
+  if (QueryLog* log = t_query_log) [[unlikely]] log->add(QueryLog::Call::Occluded16, rays, n);
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  alignas(64) RTCRayHit16 p;
+  alignas(64) int valid[16];
+  to_embree16(rays, n, p, valid);
+  rtcOccluded16(valid, impl_->scene, &ctx, reinterpret_cast<RTCRay16*>(&p.ray));
+  for (int i = 0; i < n; ++i) occluded[i] = !valid[i] || p.ray.tfar[i] < 0;  // invalid: as occluded() says
+}
+
+namespace {
+struct CollectContext {
+  RTCIntersectContext base;  // first member: Embree passes &base to the filter
+  LightHitRecord* out;
+  int max_hits, count;
+};
+
+void collect_filter(const RTCFilterFunctionNArguments* args) {
+  auto* ctx = reinterpret_cast<CollectContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    if (ctx->count < ctx->max_hits)
+      ctx->out[ctx->count] = {RTCHitN_geomID(args->hit, args->N, i), RTCHitN_primID(args->hit, args->N, i),
+                              RTCRayN_tfar(args->ray, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                              RTCHitN_v(args->hit, args->N, i)};
+    ++ctx->count;
+    args->valid[i] = 0;  // reject, so traversal goes on to every other hit
+  }
+}
+}  // namespace
+
+int Geometry::all_light_hits(const Ray& ray, LightHitRecord* out, int max_hits) const {
+  if (!ray_is_valid(ray)) return 0;
+  if (QueryLog* log = t_query_log) [[unlikely]] log->add(QueryLog::Call::LightHits, &ray, 1);
+  CollectContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.base.filter = collect_filter;
+  ctx.out = out;
+  ctx.max_hits = max_hits;
+  ctx.count = 0;
+  RTCRayHit rh = to_embree(ray);
+  rtcIntersect1(impl_->light_scene, &ctx.base, &rh);
+  return ctx.count;
 }
 
 }  // namespace lumis

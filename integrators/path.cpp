@@ -1,4 +1,4 @@
-#include "integrators/path.h"
+#include "integrators/path_vertex.h"
 
 #include <algorithm>
 #include <cmath>

@@ -56,7 +56,7 @@ struct LightSample {
   /// le, wi, dist, pdf, p_light, n_light, p_error (the members themselves are ordered by slot).
   LightSample(Color le_, Vec3 wi_, float dist_, float pdf_, Vec3 p_light_, Vec3 n_light_, float p_error_)
       : wi(wi_), dist(dist_), p_light(p_light_), pdf(pdf_), n_light(n_light_), p_error(p_error_), le(le_) {}
-  // In 16-byte slots (a Vec3 and a float each), like Ray in core/geometry.h.
+  // In 16-byte slots (a Vec3 and a float each), like Ray in core/ray.h.
   Vec3 wi;           ///< unit world direction from the receiver toward the light
   float dist = 0;    ///< distance to the sampled light point (INFINITY for the environment)
   Vec3 p_light;      ///< sampled point on the light (unused for the environment)

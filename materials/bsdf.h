@@ -16,7 +16,7 @@ struct BsdfSample {
   BsdfSample() = default;
   /// wi, f, pdf (the members themselves are ordered by slot).
   BsdfSample(Vec3 wi_, Color f_, float pdf_) : wi(wi_), pdf(pdf_), f(f_) {}
-  // In 16-byte slots (a Vec3 and a float), like Ray in core/geometry.h.
+  // In 16-byte slots (a Vec3 and a float), like Ray in core/ray.h.
   Vec3 wi;       ///< sampled incident direction (local)
   float pdf = 0; ///< solid-angle density of wi under sample() (the full mixture density)
   Color f;       ///< BSDF value f(wo, wi), cosine excluded

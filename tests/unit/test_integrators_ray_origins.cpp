@@ -1,4 +1,4 @@
-// Where light sampling's rays start and end (integrators/path.h light_context, core/geometry.h spawn_ray_to).
+// Where light sampling's rays start and end (integrators/path_vertex.h light_context, core/ray.h spawn_ray_to).
 // Deterministic: fixed receivers and fixed sample numbers, exact counts.
 //  - Shadow rays toward a sampled light point reach it far from the origin. At 1e4 units a float's spacing is
 //    1e-3, so a sampled point is rounded into its own light by up to about that much; the shadow segment used to
