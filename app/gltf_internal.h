@@ -1,5 +1,5 @@
-// Shared pieces of the glTF loader (gltf_loader.cpp, gltf_accessor.cpp, gltf_materials.cpp, gltf_nodes.cpp,
-// gltf_primitives.cpp). Not a public API.
+// Shared pieces of the glTF loader (gltf_loader.cpp, gltf_accessor.cpp, gltf_materials.cpp, gltf_textures.cpp,
+// gltf_nodes.cpp, gltf_primitives.cpp). Not a public API.
 #pragma once
 
 #include <tiny_gltf.h>
@@ -134,7 +134,34 @@ std::vector<Mat4> gpu_instances(Context& ctx, AccessorCache& acc, const tinygltf
 void set_camera(Context& ctx, GltfScene& scene, const tinygltf::Node& node, const Mat4& world, const std::string& at,
                 int& orthographic);
 
-// --- materials and textures (gltf_materials.cpp) ---
+// --- textures (gltf_textures.cpp) ---
+
+/// The file's images, each (image, sRGB) pair decoded once (to R, G, B and optionally A) and shared by every texture
+/// that uses it. Files an image came from are added to ctx.image_files when first used.
+class ImageCache {
+ public:
+  explicit ImageCache(Context& ctx) : ctx_(ctx) {}
+  /// Decode the given (image, sRGB) pairs on all cores; errors surface later, in get(), in file order.
+  void prefetch(const std::set<std::pair<int, bool>>& keys);
+  /// images[index], decoded with or without the sRGB curve; `where` names the reference in errors.
+  std::shared_ptr<const Image> get(int index, bool srgb, const std::string& where);
+
+ private:
+  Image load(int index, bool srgb);
+
+  Context& ctx_;
+  std::map<std::pair<int, bool>, std::shared_ptr<const Image>> cache_;
+  std::set<int> recorded_;  ///< images whose file is in ctx_.image_files
+};
+
+/// An extension's number (tinygltf::Value), finite as a float, or an error at `where`.
+float number(const Context& ctx, const tinygltf::Value& v, const std::string& where);
+/// A material's texture reference (index, texCoord, extensions) to a Texture; `where` is e.g.
+/// "materials[2].pbrMetallicRoughness.baseColorTexture".
+Texture make_texture(Context& ctx, ImageCache& images, int index, int tex_coord,
+                     const tinygltf::ExtensionMap& extensions, bool srgb, const std::string& where);
+
+// --- materials (gltf_materials.cpp) ---
 
 /// Convert every material of the file, in order (textures decoded once each and shared).
 std::vector<GltfMaterial> convert_materials(Context& ctx);

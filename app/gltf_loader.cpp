@@ -1,6 +1,6 @@
 // glTF file parsing (through tinygltf), validation of the node hierarchy, and flattening of the default scene into
-// world-space meshes. Accessors are in gltf_accessor.cpp, materials in gltf_materials.cpp, primitives in
-// gltf_primitives.cpp, node transforms, instancing and cameras in gltf_nodes.cpp.
+// world-space meshes. Accessors are in gltf_accessor.cpp, materials in gltf_materials.cpp (their textures in
+// gltf_textures.cpp), primitives in gltf_primitives.cpp, node transforms, instancing and cameras in gltf_nodes.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
