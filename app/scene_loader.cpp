@@ -1,5 +1,6 @@
-// Scene files: the top level of the lumis JSON format (version, camera, film, render) and glTF files rendered with
-// defaults. Materials, shapes and lights are in json_scene.cpp / json_shapes.cpp.
+// Scene files: the top level of the lumis JSON format (version, camera, film, render), and the checks every scene
+// passes. Materials, shapes and lights are in json_scene.cpp / json_shapes.cpp; glTF files rendered with defaults in
+// gltf_scene.cpp.
 #include "app/scene_loader.h"
 
 #include <algorithm>
@@ -7,23 +8,20 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include "app/json_scene.h"
+#include "app/scene_loader_internal.h"
 #include "app/scene_error.h"
 #include "core/file_ext.h"
-#include "core/image.h"
 #include "integrators/integrator.h"
 
 namespace lumis {
 
 namespace {
 
-constexpr int kMaxResolution = 16384;  // per side; 16384^2 = 2^28 pixels, about 3 GiB of float RGB accumulators
-constexpr int kGltfImageWidth = 512;
 // At the other end, products of three lengths (Embree's intersection terms, squared areas) reach float's denormals
 // in scenes much smaller than this, and images go wrong: the geometry's bounding box must be at least this large.
 constexpr float kMinSize = 1e-12f;
@@ -34,11 +32,10 @@ std::string format_number(float v) {
   return buf;
 }
 
-/// Reject geometry or a given camera (at `camera_location`; empty for a framing camera) too far from the origin,
-/// or geometry too small, for float arithmetic (see kMaxCoordinate, kMinSize). near_location: where the camera's
-/// near clip distance is given (empty: none is).
+}  // namespace
+
 void check_extent(const Scene& scene, const std::string& path, const std::string& camera_location,
-                  const std::string& near_location = "") {
+                  const std::string& near_location) {
   const Bounds3 b = scene.geometry.bounds();
   if (!b.empty()) {
     const float extent = std::max(max_component(abs(b.lo)), max_component(abs(b.hi)));
@@ -69,6 +66,8 @@ void check_extent(const Scene& scene, const std::string& path, const std::string
                          ", starts its rays up to " + format_number(reach) +
                          " scene units from the origin; coordinates must stay within " + format_number(kMaxCoordinate));
 }
+
+namespace {
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -169,95 +168,6 @@ std::unique_ptr<Scene> load_json_scene(const std::string& text, const std::strin
   if (!root.has("camera")) frame_camera(*scene, builder.bounds());
   const bool near = root.has("camera") && root["camera"].has("near");
   check_extent(*scene, path, root.has("camera") ? "/camera/from" : "", near ? "/camera/near" : "");
-  scene->finalize();
-  return scene;
-}
-
-// A bare glTF file: its first camera, or the one options.camera names (or a framing one), and a white sky unless it has a light source: an emissive
-// material without an emissive texture (a lamp). Textured emission is usually a decal (a helmet's visor display),
-// too weak to light a model on its own, so such files get the sky too.
-// The camera `wanted` names (SceneLoadOptions::camera) among the file's; throws std::invalid_argument listing them.
-const GltfCamera& choose_camera(const GltfScene& gltf, const std::string& wanted, const std::string& path) {
-  const bool number = wanted.find_first_not_of("0123456789") == std::string::npos;
-  // By number, or by the node's name, else the camera object's (Blender names them apart: "Camera.001" / "Camera").
-  for (size_t i = 0; i < gltf.cameras.size(); ++i)
-    if (number ? wanted == std::to_string(i) : wanted == gltf.cameras[i].name) return gltf.cameras[i];
-  std::vector<size_t> by_camera;  // one camera object may sit in several nodes: then its name does not say which
-  for (size_t i = 0; i < gltf.cameras.size() && !number; ++i)
-    if (wanted == gltf.cameras[i].camera_name) by_camera.push_back(i);
-  if (by_camera.size() == 1) return gltf.cameras[by_camera[0]];
-  if (by_camera.size() > 1) {
-    std::ostringstream nodes;
-    for (size_t i : by_camera) nodes << (i == by_camera.front() ? "" : ", ") << i << " (" << gltf.cameras[i].path << ")";
-    throw std::invalid_argument("--camera: camera '" + wanted + "' of " + path + " is in several nodes: " + nodes.str() +
-                                "; give the number or the node's name");
-  }
-  std::ostringstream list;
-  for (size_t i = 0; i < gltf.cameras.size(); ++i) {
-    const GltfCamera& c = gltf.cameras[i];
-    list << (i ? ", " : "") << i;
-    if (!c.name.empty()) list << " '" << c.name << "'";
-    list << " (" << c.path;
-    if (!c.camera_name.empty() && c.camera_name != c.name) list << ", camera '" << c.camera_name << "'";
-    list << ")";
-  }
-  throw std::invalid_argument("--camera: " + path + " has no camera '" + wanted + "'; " +
-                              (gltf.cameras.empty() ? "it has no perspective camera" : "its cameras: " + list.str()));
-}
-
-std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadOptions& options) {
-  auto scene = std::make_unique<Scene>();
-  scene->source = path;
-  GltfScene gltf;
-  try {
-    gltf = load_gltf(path);
-  } catch (const ImageError& e) {
-    throw SceneError(path, "", std::string("cannot read a texture: ") + e.what());
-  }
-  for (const auto& w : gltf.warnings) std::cerr << path << ": warning: " << w << "\n";
-  scene->input_images = gltf.image_files;
-  if (gltf.meshes.empty()) throw SceneError(path, "", "scene is empty: the glTF file has no triangle meshes");
-  std::string camera_at;  // the chosen camera's glTF path, for errors
-  if (options.camera == "0" && gltf.cameras.empty()) {  // "0 = the default": the framing camera here
-    std::cerr << path << ": warning: --camera 0: the file has no perspective camera; rendering through the framing "
-              << "camera, as without --camera\n";
-  } else if (!options.camera.empty()) {
-    const GltfCamera& c = choose_camera(gltf, options.camera, path);
-    gltf.camera = c.camera;
-    gltf.camera_aspect = c.aspect;
-    camera_at = c.path;
-  } else if (gltf.camera && !gltf.cameras.empty()) {
-    camera_at = gltf.cameras.front().path;  // the default camera is the first
-  }
-  if (gltf.camera_aspect && *gltf.camera_aspect > 0) {
-    // Keep 512 pixels across and follow the camera's aspect ratio for the height.
-    scene->settings.width = kGltfImageWidth;
-    // Clamped before rounding: a tiny ratio (1e-30) overflows lround's range, which once gave a height of 1.
-    const double height = double(kGltfImageWidth) / *gltf.camera_aspect;
-    scene->settings.height = static_cast<int>(std::lround(std::clamp(height, 1.0, double(kMaxResolution))));
-    if (!(height >= 0.5 && height < kMaxResolution + 0.5) && !options.size_given)  // the image lacks its shape
-      std::cerr << path << ": warning: " << (camera_at.empty() ? std::string("the camera") : camera_at)
-                << "'s aspectRatio " << *gltf.camera_aspect << " needs an image of " << kGltfImageWidth << " x "
-                << height << " pixels; its height is clamped to 1..." << kMaxResolution
-                << " (give --width and --height for another shape)\n";
-  }
-  JsonSceneBuilder builder(*scene, path);
-  bool has_lamp = false;
-  for (const TriangleMesh& m : gltf.meshes) {
-    if (m.material < 0 || m.material >= static_cast<int>(gltf.materials.size())) continue;
-    const PbrParams& p = gltf.materials[m.material].params;
-    has_lamp |= !is_black(p.emissive) && !p.emissive_texture;
-  }
-  builder.add_gltf(gltf, std::vector<int>(gltf.materials.size(), -1), TriangleSampling::SphericalTriangle);
-  if (!has_lamp) {
-    scene->environment = static_cast<int>(scene->lights.size());
-    scene->lights.push_back(make_constant_environment(Color(1.0f)));
-  }
-  if (gltf.camera)
-    scene->camera = *gltf.camera;
-  else
-    frame_camera(*scene, gltf.bounds.empty() ? builder.bounds() : gltf.bounds);
-  check_extent(*scene, path, gltf.camera ? camera_at : "", gltf.camera ? camera_at : "");
   scene->finalize();
   return scene;
 }
