@@ -32,9 +32,10 @@ const GltfCamera& choose_camera(const GltfScene& gltf, const std::string& wanted
   if (by_camera.size() == 1) return gltf.cameras[by_camera[0]];
   if (by_camera.size() > 1) {
     std::ostringstream nodes;
-    for (size_t i : by_camera) nodes << (i == by_camera.front() ? "" : ", ") << i << " (" << gltf.cameras[i].path << ")";
-    throw std::invalid_argument("--camera: camera '" + wanted + "' of " + path + " is in several nodes: " + nodes.str() +
-                                "; give the number or the node's name");
+    for (size_t i : by_camera)
+      nodes << (i == by_camera.front() ? "" : ", ") << i << " (" << gltf.cameras[i].path << ")";
+    throw std::invalid_argument("--camera: camera '" + wanted + "' of " + path + " is in several nodes: " +
+                                nodes.str() + "; give the number or the node's name");
   }
   std::ostringstream list;
   for (size_t i = 0; i < gltf.cameras.size(); ++i) {
