@@ -1,5 +1,6 @@
-// Shared by app/compare.cpp (the pipeline) and app/compare_reference.cpp (rendering variants and the reference, and
-// the reference's cache); not part of compare.h's interface.
+// Shared by app/compare.cpp (the pipeline's checks and outputs), app/compare_reference.cpp (rendering one variant,
+// the reference and its cache) and app/compare_variants.cpp (every variant, then the pictures); not part of
+// compare.h's interface.
 #pragma once
 
 #include <cstdint>
@@ -7,6 +8,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "app/commands.h"
 #include "app/compare.h"
@@ -40,5 +42,17 @@ Image read_reference(const std::string& path, const RenderSettings& s, const std
 Image cached_reference(Scene& scene, const CompareArgs& args, const RenderSettings& base, const std::string& scene_path,
                        const std::filesystem::path& dir, CompareReport& report,
                        const std::function<void(const std::string&)>& log);
+
+/// Renders each of `names` with `base` (its integrator replaced), writes NAME.exr and NAME.png in `dir`, and appends
+/// to report.variants its statistics and errors against `reference` (with `convergence`: also a series at doubling
+/// sample counts). Warns of variants that did not get equal time or outran the reference. Returns each variant's
+/// R, G, B, in order, for write_pictures.
+std::vector<Image> render_variants(Scene& scene, const std::vector<std::string>& names, const RenderSettings& base,
+                                   const Image& reference, bool convergence, const std::filesystem::path& dir,
+                                   CompareReport& report, const std::function<void(const std::string&)>& log);
+/// Writes error-NAME.png on one shared scale (report.error_scale), montage.png (cropped to report.crop) and, with
+/// `convergence`, convergence.png (report.convergence_png).
+void write_pictures(const std::vector<Image>& images, const Image& reference, const RenderSettings& base,
+                    bool convergence, const std::filesystem::path& dir, CompareReport& report);
 
 }  // namespace lumis
