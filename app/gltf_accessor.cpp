@@ -14,100 +14,11 @@ namespace {
 // Elements of an accessor without a bufferView (zeros, then sparse values): 2^26, 800 MB of mat4 at most.
 constexpr uint64_t kMaxZeroAccessorCount = uint64_t(1) << 26;
 
-int component_size(int type) {
-  switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;  // DOUBLE and INT are not glTF 2.0 accessor types
-  }
-}
-
-int type_components(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-    default: return 0;
-  }
-}
-
-std::string type_name(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    case TINYGLTF_TYPE_MAT2: return "MAT2";
-    case TINYGLTF_TYPE_MAT3: return "MAT3";
-    case TINYGLTF_TYPE_MAT4: return "MAT4";
-    default: return "unknown type " + std::to_string(type);
-  }
-}
-
-std::string component_name(int ctype, bool normalized) {
-  const std::string prefix = normalized ? "normalized " : "";
-  switch (ctype) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: return prefix + "BYTE";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return prefix + "UNSIGNED_BYTE";
-    case TINYGLTF_COMPONENT_TYPE_SHORT: return prefix + "SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return prefix + "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return prefix + "UNSIGNED_INT";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return prefix + "FLOAT";
-    default: return std::to_string(ctype);
-  }
-}
-
 /// Indices: any unsigned integer type, not normalized.
 const ComponentTypes kIndices = {{{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, false},
                                   {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, false},
                                   {TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, false}},
                                  /*quantizable=*/false};
-
-/// One component as float; normalized integers follow glTF's max(c / (2^(n-1) - 1), -1) and c / (2^n - 1).
-float decode_component(const unsigned char* p, int ctype, bool normalized) {
-  switch (ctype) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-      int8_t v; std::memcpy(&v, p, 1);
-      return normalized ? std::max(v / 127.0f, -1.0f) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
-      uint8_t v; std::memcpy(&v, p, 1);
-      return normalized ? v / 255.0f : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-      int16_t v; std::memcpy(&v, p, 2);
-      return normalized ? std::max(v / 32767.0f, -1.0f) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      uint16_t v; std::memcpy(&v, p, 2);
-      return normalized ? v / 65535.0f : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-      uint32_t v; std::memcpy(&v, p, 4);
-      return static_cast<float>(v);
-    }
-    default: {
-      float v; std::memcpy(&v, p, 4);
-      return v;
-    }
-  }
-}
-
-uint32_t decode_uint(const unsigned char* p, int ctype) {
-  switch (ctype) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return v; }
-    default: { uint32_t v; std::memcpy(&v, p, 4); return v; }
-  }
-}
 
 /// The accessor's elements gathered into a tightly packed byte array (stride removed, sparse values applied).
 struct Packed {

@@ -41,6 +41,21 @@ struct Context {
 /// "name[i]", the way glTF paths index arrays.
 inline std::string indexed(const std::string& name, size_t i) { return name + "[" + std::to_string(i) + "]"; }
 
+// --- component and element types (gltf_components.cpp) ---
+
+/// Bytes of one component of TINYGLTF_COMPONENT_TYPE_*; 0 for a type glTF 2.0 accessors do not allow.
+int component_size(int ctype);
+/// Components of one element of TINYGLTF_TYPE_* (MAT3: 9); 0 when unknown.
+int type_components(int type);
+/// "VEC3" and the like, for messages.
+std::string type_name(int type);
+/// "normalized UNSIGNED_BYTE" and the like, for messages.
+std::string component_name(int ctype, bool normalized);
+/// One component at `p` as float; normalized integers follow glTF's max(c / (2^(n-1) - 1), -1) and c / (2^n - 1).
+float decode_component(const unsigned char* p, int ctype, bool normalized);
+/// One unsigned integer component at `p` (indices).
+uint32_t decode_uint(const unsigned char* p, int ctype);
+
 // --- accessors (gltf_accessor.cpp) ---
 
 /// Float view of an accessor: `components` per element, normalized integers mapped to [0,1] / [-1,1].
