@@ -1,5 +1,6 @@
-// Shared pieces of the glTF loader (gltf_loader.cpp, gltf_accessor.cpp, gltf_materials.cpp, gltf_textures.cpp,
-// gltf_nodes.cpp, gltf_primitives.cpp). Not a public API.
+// Shared pieces of the glTF loader (gltf_loader.cpp, gltf_parse.cpp, gltf_accessor.cpp, gltf_components.cpp,
+// gltf_materials.cpp, gltf_textures.cpp, gltf_nodes.cpp, gltf_primitives.cpp, gltf_uri.cpp, gltf_json_checks.cpp).
+// Not a public API.
 #pragma once
 
 #include <tiny_gltf.h>
@@ -101,6 +102,13 @@ class AccessorCache {
 
 /// Raw bytes of a validated buffer view (offset and length inside its buffer).
 std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx, int view, const std::string& where);
+
+// --- parsing (gltf_parse.cpp) ---
+
+/// Reads `path` (.gltf or .glb, told by its first bytes) into ctx.model through tinygltf, after checking its JSON text
+/// (nesting depth, matrix nodes, negative offsets, '+' in URIs), and checks its version, its buffer files and its
+/// external images; any fault is ctx.fail with the glTF path, in glTF terms where tinygltf's message is not.
+void parse_file(Context& ctx, const std::string& path);
 
 // --- URIs (gltf_uri.cpp) ---
 

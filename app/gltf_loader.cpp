@@ -1,20 +1,13 @@
-// glTF file parsing (through tinygltf), validation of the node hierarchy, and flattening of the default scene into
-// world-space meshes. Accessors are in gltf_accessor.cpp, materials in gltf_materials.cpp (their textures in
-// gltf_textures.cpp), primitives in gltf_primitives.cpp, node transforms, instancing and cameras in gltf_nodes.cpp.
+// Loading a glTF file: its extensions and node hierarchy validated, and its default scene flattened into world-space
+// meshes. Parsing (through tinygltf) is in gltf_parse.cpp, accessors in gltf_accessor.cpp (their types in
+// gltf_components.cpp), materials in gltf_materials.cpp (their textures in gltf_textures.cpp), primitives in
+// gltf_primitives.cpp, node transforms, instancing and cameras in gltf_nodes.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
-#include <optional>
-#include <string_view>
-
-#include <nlohmann/json.hpp>
 
 #include "app/gltf_internal.h"
-#include "app/json_depth.h"
 
 namespace lumis {
 
@@ -22,124 +15,6 @@ namespace fs = std::filesystem;
 using namespace gltf;
 
 namespace {
-
-/// Keep embedded images encoded until a material needs them (decoded then by OpenImageIO, from validated byte ranges,
-/// as external images are); tinygltf's copy of external images' bytes is dropped here.
-bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
-                      const unsigned char* bytes, int size, void*) {
-  if (image->bufferView < 0 && image->uri.empty()) image->image.assign(bytes, bytes + size);  // data: URI
-  return true;
-}
-
-/// tinygltf's file-exists test, narrowed to regular files: a buffer or image URI naming a pipe or a device
-/// (/dev/zero) would block or stream forever when read, so it is reported as missing instead.
-bool regular_file_exists(const std::string& path, void*) {
-  std::error_code ec;
-  return fs::is_regular_file(path, ec);
-}
-
-/// asset.version and asset.minVersion: lumis reads glTF 2.0 (a later 2.x file must read as 2.0).
-void check_version(const Context& ctx, const std::string& version, const std::string& min_version) {
-  if (version.rfind("2.", 0) != 0)
-    ctx.fail("asset.version", "glTF version \"" + version + "\": lumis reads glTF 2.0 (major version 2)");
-  if (!min_version.empty() && min_version != "2.0")
-    ctx.fail("asset.minVersion", "the file needs glTF " + min_version + "; lumis reads glTF 2.0");
-}
-
-/// The JSON text of a .gltf, or the JSON chunk of a .glb (12-byte header, chunk length, "JSON", the text, read
-/// without the binary chunk); nothing when a .glb's header is too damaged to find it (tinygltf then says why).
-std::optional<std::string> json_text(const std::string& path, bool binary) {
-  std::ifstream in(path, std::ios::binary);
-  if (!binary) return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  char head[20] = {};
-  if (!in.read(head, sizeof(head)) || std::string_view(head + 16, 4) != "JSON") return std::nullopt;
-  uint32_t length = 0;
-  std::memcpy(&length, head + 12, 4);
-  std::error_code ec;
-  const uint64_t size = fs::file_size(path, ec);
-  if (ec || length > size - sizeof(head)) return std::nullopt;
-  std::string text(length, '\0');
-  if (!in.read(text.data(), length)) return std::nullopt;
-  return text;
-}
-
-/// tinygltf converts the document to its own values recursively: refuse nesting that would overflow the stack.
-void check_depth(const Context& ctx, const std::string& text, bool binary) {
-  if (const auto at = json_too_deep(text))
-    ctx.fail("", "the JSON" + std::string(binary ? " chunk" : "") + " nests deeper than " +
-                     std::to_string(kMaxJsonDepth) + " levels (at line:column " + json_line_column(text, *at) +
-                     "); lumis reads at most " + std::to_string(kMaxJsonDepth));
-}
-
-/// Where tinygltf rejects a file, name the cause in glTF terms when it is one of the likely ones above: a version
-/// other than 2.0 (the structure of 1.0 differs) or a missing or short buffer file. Returns when it is none of them.
-void explain_rejection(const Context& ctx, const std::string& path, bool binary) {
-  const std::optional<std::string> json = json_text(path, binary);
-  if (!json) return;
-  const std::string& text = *json;
-  const auto doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (!doc.is_object()) return;
-  if (auto a = doc.find("asset"); a != doc.end() && a->is_object() && a->contains("version") &&
-                                  (*a)["version"].is_string()) {
-    // Not a->value("minVersion", ...): that throws for a minVersion of another type, which tinygltf ignores.
-    const auto mv = a->find("minVersion");
-    check_version(ctx, (*a)["version"], mv != a->end() && mv->is_string() ? mv->get<std::string>() : std::string());
-  }
-  if (auto b = doc.find("buffers"); b != doc.end() && b->is_array())
-    for (size_t i = 0; i < b->size(); ++i) {
-      const auto& buffer = (*b)[i];
-      // A .glb's buffer with "uri": "" is its BIN chunk to tinygltf, so the rejection lies elsewhere.
-      if (buffer.is_object() && buffer.contains("uri") && buffer["uri"].is_string() &&
-          buffer.contains("byteLength") && buffer["byteLength"].is_number_unsigned() &&
-          !(binary && buffer["uri"].get<std::string>().empty()))
-        check_buffer_uri(ctx, i, buffer["uri"], buffer["byteLength"], /*explaining=*/true);
-    }
-}
-
-void parse_file(Context& ctx, const std::string& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) ctx.fail("", "no such file");
-  char magic[4] = {};
-  std::ifstream(path, std::ios::binary).read(magic, 4);
-  const bool binary = std::string(magic, 4) == "glTF";
-  const std::optional<std::string> text = json_text(path, binary);
-  if (text) check_depth(ctx, *text, binary);
-  if (text) check_matrix_nodes(ctx, *text);
-  if (text) check_unsigned_fields(ctx, *text);
-  PlusUris plus = text ? plus_uris(ctx, *text) : PlusUris{};
-
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&keep_image_bytes, nullptr);
-  loader.SetFsCallbacks({&regular_file_exists, &expand_plus_uri, &tinygltf::ReadWholeFile,
-                         &tinygltf::WriteWholeFile, &plus});
-  std::string err, warn;
-  const bool ok = binary ? loader.LoadBinaryFromFile(&ctx.model, &err, &warn, path)
-                         : loader.LoadASCIIFromFile(&ctx.model, &err, &warn, path);
-  // tinygltf's message, without trailing blanks and at most 300 characters (it can quote a whole data: URI).
-  auto trim = [](std::string s) {
-    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
-    if (s.size() > 300) s = s.substr(0, 300) + "... (" + std::to_string(s.size() - 300) + " more characters)";
-    return s;
-  };
-  if (!ok || !err.empty()) {
-    explain_rejection(ctx, path, binary);
-    ctx.fail("", std::string(binary ? "invalid .glb: " : "invalid glTF: ") + trim(err.empty() ? warn : err));
-  }
-  check_version(ctx, ctx.model.asset.version, ctx.model.asset.minVersion);
-  // tinygltf also looks in the working folder: a buffer must be where the file says.
-  for (size_t i = 0; i < ctx.model.buffers.size(); ++i)
-    check_buffer_uri(ctx, i, ctx.model.buffers[i].uri, ctx.model.buffers[i].data.size(), /*explaining=*/false);
-
-  // Missing external images: name the URI (tinygltf only warns).
-  for (size_t i = 0; i < ctx.model.images.size(); ++i) {
-    const auto& img = ctx.model.images[i];
-    if (img.bufferView >= 0 || img.uri.empty()) continue;
-    const fs::path file = resolve_uri(ctx, img.uri);
-    if (!fs::is_regular_file(file, ec))
-      ctx.fail(indexed("images", i), "image file '" + img.uri + "' not found (looked for " + file.string() + ")");
-  }
-  if (!warn.empty()) ctx.fail("", "tinygltf: " + trim(warn));
-}
 
 void check_extensions(Context& ctx) {
   static const std::set<std::string> supported = {"KHR_texture_transform", "KHR_materials_emissive_strength",
