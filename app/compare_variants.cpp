@@ -119,8 +119,8 @@ void write_pictures(const std::vector<Image>& images, const Image& reference, co
   std::vector<MontageTile> tiles;
   for (size_t i = 0; i < images.size(); ++i) {
     const VariantResult& v = report.variants[i];
-    tiles.push_back({&images[i],
-                     {v.name, std::to_string(v.spp) + " SPP " + timing(v.seconds), "RELMSE " + short_number(v.rel_mse)}});
+    const std::string spp_time = std::to_string(v.spp) + " SPP " + timing(v.seconds);
+    tiles.push_back({&images[i], {v.name, spp_time, "RELMSE " + short_number(v.rel_mse)}});
   }
   tiles.push_back(
       {&ref_rgb, {"REFERENCE", report.reference_spp ? std::to_string(report.reference_spp) + " SPP" : "FILE", ""}});

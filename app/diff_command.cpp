@@ -52,7 +52,8 @@ int run_diff(const DiffArgs& args) {
     try {
       size_t used = 0;
       opt.psnr_peak = std::stod(args.psnr_peak, &used);
-      if (used != args.psnr_peak.size() || !(opt.psnr_peak > 0) || !std::isfinite(opt.psnr_peak)) throw std::invalid_argument("");
+      if (used != args.psnr_peak.size() || !(opt.psnr_peak > 0) || !std::isfinite(opt.psnr_peak))
+        throw std::invalid_argument("");
     } catch (const std::exception&) {
       std::cerr << "lumis diff: --psnr-peak: expected a positive number or 'max', got '" << args.psnr_peak << "'\n";
       return 2;

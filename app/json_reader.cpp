@@ -76,7 +76,9 @@ std::string join_names(const std::vector<std::string>& names) {
 
 void JsonNode::fail(const std::string& detail) const { throw SceneError(*file_, pointer_, detail); }
 
-void JsonNode::fail_expected(const std::string& what) const { fail("expected " + what + ", found " + describe_json(*value_)); }
+void JsonNode::fail_expected(const std::string& what) const {
+  fail("expected " + what + ", found " + describe_json(*value_));
+}
 
 void JsonNode::expect_object(std::initializer_list<std::string_view> allowed) const {
   if (!value_->is_object()) fail_expected("an object");
@@ -105,7 +107,8 @@ std::optional<JsonNode> JsonNode::find(std::string_view key) const {
 std::vector<JsonNode> JsonNode::elements() const {
   if (!value_->is_array()) fail_expected("an array");
   std::vector<JsonNode> out;
-  for (size_t i = 0; i < value_->size(); ++i) out.emplace_back((*value_)[i], pointer_ + "/" + std::to_string(i), *file_);
+  for (size_t i = 0; i < value_->size(); ++i)
+    out.emplace_back((*value_)[i], pointer_ + "/" + std::to_string(i), *file_);
   return out;
 }
 

@@ -78,7 +78,8 @@ std::unique_ptr<Material> JsonSceneBuilder::parse_material(const JsonNode& node,
   }
   if (types[type] == "ggx") {
     node.expect_object({"type", "f0", "color", "roughness"});
-    if (node.has("f0") && node.has("color")) node["color"].fail("give either \"f0\" or \"color\" (the same thing), not both");
+    if (node.has("f0") && node.has("color"))
+      node["color"].fail("give either \"f0\" or \"color\" (the same thing), not both");
     if (!node.has("f0") && !node.has("color")) node.fail("missing required key \"f0\" (or its alias \"color\")");
     const Color f0 = node[node.has("f0") ? "f0" : "color"].as_vec3(0, 1);
     return make_ggx_material(f0, node["roughness"].as_float(0, 1));

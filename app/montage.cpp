@@ -16,7 +16,9 @@ const Color kCropOutline = srgb8(255, 210, 0);
 constexpr int kPad = 6;
 
 // Integer enlargement that brings the longer side of a w x h picture to at least `target` pixels.
-int enlargement(int w, int h, int target) { return std::max(1, (target + std::max(w, h) - 1) / std::max(1, std::max(w, h))); }
+int enlargement(int w, int h, int target) {
+  return std::max(1, (target + std::max(w, h) - 1) / std::max(1, std::max(w, h)));
+}
 
 }  // namespace
 
@@ -56,7 +58,8 @@ void draw_line(Image& canvas, float x0, float y0, float x1, float y1, Color c, i
   const int half = thickness / 2;
   for (int i = 0; i <= steps; ++i) {
     const float t = steps ? static_cast<float>(i) / steps : 0.0f;
-    const int x = static_cast<int>(std::lround(x0 + (x1 - x0) * t)), y = static_cast<int>(std::lround(y0 + (y1 - y0) * t));
+    const int x = static_cast<int>(std::lround(x0 + (x1 - x0) * t));
+    const int y = static_cast<int>(std::lround(y0 + (y1 - y0) * t));
     fill_rect(canvas, x - half, y - half, thickness, thickness, c);
   }
 }

@@ -118,7 +118,8 @@ Enum parse_enum(const JsonNode& node, const std::vector<std::string>& names, std
 void parse_render(const JsonNode& node, RenderSettings& s) {
   node.expect_object({"integrator", "spp", "max_depth", "rr_depth", "sampler", "seed", "light_selection",
                       "mis_heuristic", "uniform_measure", "mis_light_probability", "time", "exposure"});
-  if (auto v = node.find("integrator")) s.integrator = integrator_names()[v->as_choice(integrator_names(), "integrator")];
+  if (auto v = node.find("integrator"))
+    s.integrator = integrator_names()[v->as_choice(integrator_names(), "integrator")];
   if (auto v = node.find("spp")) s.spp = static_cast<uint32_t>(v->as_integer(1, 1 << 30));
   if (auto v = node.find("max_depth")) s.max_depth = static_cast<int>(v->as_integer(1, 1024));
   if (auto v = node.find("rr_depth")) s.rr_depth = static_cast<int>(v->as_integer(0, 1024));

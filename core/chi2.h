@@ -1,5 +1,5 @@
-// Statistical helpers (tests and `lumis warptest`): Pearson chi-square goodness of fit with pooling of small cells and Sidak
-// correction (as pbrt-v4 and Nori do), and a directional version that bins sphere directions.
+// Statistical helpers (tests and `lumis warptest`): Pearson chi-square goodness of fit with pooling of small cells and
+// Sidak correction (as pbrt-v4 and Nori do), and a directional version that bins sphere directions.
 #pragma once
 
 #include <cstdint>

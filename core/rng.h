@@ -17,7 +17,9 @@ inline uint64_t mix64(uint64_t v) {
   return v;
 }
 /// Hash of several integers, used to seed samplers from (pixel, sample index, seed) only.
-inline uint64_t hash_combine(uint64_t a, uint64_t b) { return mix64(a ^ (mix64(b) + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2))); }
+inline uint64_t hash_combine(uint64_t a, uint64_t b) {
+  return mix64(a ^ (mix64(b) + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2)));
+}
 
 class Pcg32 {
  public:
