@@ -57,40 +57,46 @@ std::string component_name(int ctype, bool normalized) {
   }
 }
 
+namespace {
+
+// The bytes at `p` as a T (unaligned, host byte order: little-endian, as glTF's buffers are).
+template <class T>
+T load(const unsigned char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+}  // namespace
+
 float decode_component(const unsigned char* p, int ctype, bool normalized) {
   switch (ctype) {
     case TINYGLTF_COMPONENT_TYPE_BYTE: {
-      int8_t v; std::memcpy(&v, p, 1);
+      const int8_t v = load<int8_t>(p);
       return normalized ? std::max(v / 127.0f, -1.0f) : v;
     }
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
-      uint8_t v; std::memcpy(&v, p, 1);
+      const uint8_t v = p[0];
       return normalized ? v / 255.0f : v;
     }
     case TINYGLTF_COMPONENT_TYPE_SHORT: {
-      int16_t v; std::memcpy(&v, p, 2);
+      const int16_t v = load<int16_t>(p);
       return normalized ? std::max(v / 32767.0f, -1.0f) : v;
     }
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      uint16_t v; std::memcpy(&v, p, 2);
+      const uint16_t v = load<uint16_t>(p);
       return normalized ? v / 65535.0f : v;
     }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-      uint32_t v; std::memcpy(&v, p, 4);
-      return static_cast<float>(v);
-    }
-    default: {
-      float v; std::memcpy(&v, p, 4);
-      return v;
-    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return static_cast<float>(load<uint32_t>(p));
+    default: return load<float>(p);
   }
 }
 
 uint32_t decode_uint(const unsigned char* p, int ctype) {
   switch (ctype) {
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return v; }
-    default: { uint32_t v; std::memcpy(&v, p, 4); return v; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load<uint16_t>(p);
+    default: return load<uint32_t>(p);
   }
 }
 

@@ -232,9 +232,10 @@ TEST(IntegratorAnalytic, SphereLightOverPlane) {
   scene.settings.width = scene.settings.height = 4;
   scene.settings.max_depth = 1;
   scene.finalize();
-  // Every ray from the plane, and every light sample (integrators/path_vertex.h, light_context), starts at the hit point
-  // offset by its error bound, e kErrorScale = 1.9e-3 above the plane: the radiance there is rho L (r / (h - d))^2,
-  // 0.38 % above the value on the plane, which the light-sampling variants resolve (z = 100 against it).
+  // Every ray from the plane, and every light sample (light_context, integrators/path_vertex.h), starts at the
+  // hit point offset by its error bound, e kErrorScale = 1.9e-3 above the plane: the radiance there is
+  // rho L (r / (h - d))^2, 0.38 % above the value on the plane, which the light-sampling variants resolve (z = 100
+  // against it).
   const double d = double(e) * kErrorScale, expected = rho * radiance.x * (r / (h - d)) * (r / (h - d));
   for (const Case& c : all_variants()) {
     const uint32_t spp = c.integrator == "uniform" ? 20000 : 4000;
