@@ -82,7 +82,8 @@ constexpr const char* kScript = R"JS(
     const v = views[current];
     img.src = showError && v.error ? v.error : v.png;
     buttons.querySelectorAll('button').forEach((b, k) => b.classList.toggle('active', k === current));
-    document.querySelectorAll('#metrics tbody tr').forEach(r => r.classList.toggle('active', r.dataset.variant === v.name));
+    document.querySelectorAll('#metrics tbody tr')
+        .forEach(r => r.classList.toggle('active', r.dataset.variant === v.name));
     let text = v.name + (showError && v.error ? ' (|error|, shared scale 0..' + p(data.error_scale, 3) + ')' : '');
     if (v.info) text += ' - ' + v.info.spp + ' spp, ' + p(v.info.seconds, 3) + ' s, relMSE ' + p(v.info.relmse, 4);
     status.textContent = text;
@@ -105,7 +106,9 @@ constexpr const char* kScript = R"JS(
   }, { passive: false });
   let drag = null;
   viewer.addEventListener('mousedown', e => { drag = { x: e.clientX - tx, y: e.clientY - ty }; e.preventDefault(); });
-  window.addEventListener('mousemove', e => { if (drag) { tx = e.clientX - drag.x; ty = e.clientY - drag.y; apply(); } });
+  window.addEventListener('mousemove', e => {
+    if (drag) { tx = e.clientX - drag.x; ty = e.clientY - drag.y; apply(); }
+  });
   window.addEventListener('mouseup', () => { drag = null; });
   viewer.addEventListener('dblclick', fit);
   window.addEventListener('keydown', e => {

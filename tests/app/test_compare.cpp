@@ -136,7 +136,8 @@ TEST(CompareReport, JsonMarkdownAndSelfContainedHtml) {
     EXPECT_DOUBLE_EQ(j["variants"][0]["samples_per_second"].get<double>(), 16 * 32 * 32 / 0.5);
     EXPECT_EQ(j["variants"][0]["convergence"].size(), 2u);
     const std::string md = report_markdown(r);
-    EXPECT_NE(md.find("| variant | spp | time (s) | samples/s | rays/s | MSE | relMSE | efficiency |"), std::string::npos);
+    EXPECT_NE(md.find("| variant | spp | time (s) | samples/s | rays/s | MSE | relMSE | efficiency |"),
+              std::string::npos);
     EXPECT_NE(md.find("| nee_mis | 16 | 0.500 |"), std::string::npos) << md;
     EXPECT_NE(md.find("| 100 |"), std::string::npos) << md;  // efficiency of nee_mis
   }

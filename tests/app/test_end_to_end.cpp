@@ -229,7 +229,8 @@ TEST(EndToEnd, FurnaceSceneMatchesClosedForm) {
   const test::RegionMean corner = test::region_mean(film, [](int x, int y) { return x < 3 && y < 3; });
   for (int c = 0; c < 3; ++c) {
     EXPECT_LT(std::abs(centre.mean[c] - 0.8), z_max * std::sqrt(centre.var[c]) + 1e-6) << "sphere " << centre.mean[c];
-    EXPECT_LT(std::abs(corner.mean[c] - 1.0), z_max * std::sqrt(corner.var[c]) + 1e-6) << "background " << corner.mean[c];
+    EXPECT_LT(std::abs(corner.mean[c] - 1.0), z_max * std::sqrt(corner.var[c]) + 1e-6)
+        << "background " << corner.mean[c];
   }
 }
 

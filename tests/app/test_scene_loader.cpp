@@ -149,7 +149,8 @@ TEST_F(SceneLoader, RenderKeysAreRead) {
   const auto scene = load_scene(write_scene(scene_with(
       R"("render": {"integrator": "mis", "spp": 16, "max_depth": 3, "rr_depth": 0, "sampler": "sobol", "seed": 7,
                     "light_selection": "power", "mis_heuristic": "power", "uniform_measure": "solid_angle",
-                    "mis_light_probability": 0.25, "time": 0.05, "exposure": -1}, "film": {"width": 64, "height": 32})")));
+                    "mis_light_probability": 0.25, "time": 0.05, "exposure": -1},
+         "film": {"width": 64, "height": 32})")));
   const RenderSettings& s = scene->settings;
   EXPECT_EQ(s.integrator, "mis");
   EXPECT_EQ(s.spp, 16u);

@@ -315,8 +315,9 @@ TEST_F(SceneLoaderErrors, ColourTextureTexelsMustBeFiniteAndNonNegative) {
   for (float bad : {-1.0f, std::numeric_limits<float>::quiet_NaN()}) {
     const std::string map = exr_with_texel(bad);
     for (const char* key : {"base_color_texture", "emissive_texture"})
-      EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "pbr", ")" + std::string(key) + R"(": ")" + map + R"("})"),
-                         "/materials/m/" + std::string(key), "expected finite values >= 0");
+      EXPECT_SCENE_ERROR(
+          scene_with_material(R"("m": {"type": "pbr", ")" + std::string(key) + R"(": ")" + map + R"("})"),
+          "/materials/m/" + std::string(key), "expected finite values >= 0");
   }
   // A non-colour texture may hold negative numbers, never NaN.
   EXPECT_SCENE_ERROR(scene_with_material(R"("m": {"type": "pbr", "normal_texture": ")" + exr_with_texel(NAN) + R"("})"),

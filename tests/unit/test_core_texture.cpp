@@ -48,7 +48,8 @@ TEST(Texture, BilinearWeights) {
   // Midway between four texels: their mean.
   EXPECT_NEAR(tex.sample({0.5f, 0.5f}).x, (11 + 12 + 21 + 22) / 4.0f, 1e-4f);
   // Bilinear interpolation reproduces a linear ramp exactly inside the image.
-  for (float u = 0.2f; u < 0.8f; u += 0.07f) EXPECT_NEAR(tex.sample({u, centre(0, 2, 4, 4).y}).x, 4 * u - 0.5f + 20, 1e-4f);
+  for (float u = 0.2f; u < 0.8f; u += 0.07f)
+    EXPECT_NEAR(tex.sample({u, centre(0, 2, 4, 4).y}).x, 4 * u - 0.5f + 20, 1e-4f);
 }
 
 TEST(Texture, RepeatWrapsAcrossTheSeam) {

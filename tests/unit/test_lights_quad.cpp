@@ -14,8 +14,8 @@
 namespace lumis {
 namespace {
 
-// Chi-square family: 2 methods x (2 directional receivers + 1 grazing in quad coordinates) + 1 parallelogram = 7 tests, Sidak-corrected alpha 0.01 for the
-// family (1% false failures per run); seeds fixed.
+// Chi-square family: 2 methods x (2 directional receivers + 1 grazing in quad coordinates) + 1 parallelogram = 7
+// tests, Sidak-corrected alpha 0.01 for the family (1% false failures per run); seeds fixed.
 constexpr int kChiTests = 7;
 const Vec3 kOrigin{-0.5f, 1.0f, -0.4f}, kEdgeU{1.0f, 0, 0}, kEdgeV{0, 0, 0.8f};  // faces -y (cross(u, v) = -y)
 const Color kRadiance{5, 5, 4};
@@ -79,9 +79,10 @@ TEST(QuadLight, GrazingReceiverInQuadCoordinates) {
     for (int a = 0; a < kGrid; ++a)
       for (int b = 0; b < kGrid; ++b) {
         const Vec3 o = kOrigin + kEdgeU * (float(a) / kGrid) + kEdgeV * (float(b) / kGrid);
-        const double share = m == QuadSampling::Area
-                                 ? 1.0 / (kGrid * kGrid)
-                                 : rectangle_solid_angle(ctx.p, o, kEdgeU / float(kGrid), kEdgeV / float(kGrid)) / total;
+        const double share =
+            m == QuadSampling::Area
+                ? 1.0 / (kGrid * kGrid)
+                : rectangle_solid_angle(ctx.p, o, kEdgeU / float(kGrid), kEdgeV / float(kGrid)) / total;
         expected[a * kGrid + b] = share * n;
       }
     const auto r = chi_square_test(observed, expected, 0.01, kChiTests);

@@ -55,9 +55,10 @@ TEST(SphericalPolygons, RectangleMatchesTwoTrianglesFromManyPoints) {
 }
 
 TEST(SphericalPolygons, TriangleWarpChiSquare) {
+  // The small, far triangle's vertices lie well inside histogram cells.
   const Tri cases[] = {
       {{0, 0, 0}, {1, -0.5f, 0.2f}, {1.2f, 0.8f, -0.1f}, {0.8f, 0.1f, 1.0f}},    // ~0.8 sr, near
-      {{0, 0, 0}, {4, -0.3f, -0.2f}, {4.1f, 0.5f, 0.1f}, {3.9f, 0.1f, 0.7f}},    // small, far (vertices well inside histogram cells)
+      {{0, 0, 0}, {4, -0.3f, -0.2f}, {4.1f, 0.5f, 0.1f}, {3.9f, 0.1f, 0.7f}},    // small, far
       {{0, 0, 0.05f}, {-3, -3, 0}, {4, -2, 0}, {0, 4, 0}},                        // huge, receiver 5 cm above
   };
   for (const Tri& t : cases) {
