@@ -67,7 +67,12 @@ Image cached_reference(Scene& scene, const CompareArgs& args, const RenderSettin
   char camera[256];
   std::snprintf(camera, sizeof camera, "\ncamera %a %a %a, %a %a %a, %a %a %a, %a, %a", c.from.x, c.from.y, c.from.z,
                 c.to.x, c.to.y, c.to.z, c.up.x, c.up.y, c.up.z, c.fov_y_degrees, c.near_clip);
-  const std::string hash = reference_hash(read_file_bytes(scene_path) + camera, base, ref_spp);
+  // The files the scene file refers to change the image as its own bytes do: their contents (not their paths, so
+  // that a moved project keeps its reference) are hashed, glTF files and buffers first, then images, in load order.
+  std::string inputs;
+  for (const auto* list : {&scene.input_files, &scene.input_images})
+    for (const std::string& file : *list) inputs += "\ninput " + fnv1a_hex(read_file_bytes(file));
+  const std::string hash = reference_hash(read_file_bytes(scene_path) + camera + inputs, base, ref_spp);
   const fs::path exr = dir / "reference.exr", meta = dir / "reference.json";
   bool cached = false;
   if (fs::exists(exr) && fs::exists(meta)) {

@@ -63,6 +63,7 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadO
   }
   for (const auto& w : gltf.warnings) std::cerr << path << ": warning: " << w << "\n";
   scene->input_images = gltf.image_files;
+  scene->input_files = gltf.buffer_files;
   if (gltf.meshes.empty()) throw SceneError(path, "", "scene is empty: the glTF file has no triangle meshes");
   std::string camera_at;  // the chosen camera's glTF path, for errors
   if (options.camera == "0" && gltf.cameras.empty()) {  // "0 = the default": the framing camera here

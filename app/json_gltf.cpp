@@ -46,6 +46,8 @@ void JsonSceneBuilder::add_gltf_shape(const JsonNode& node) {
   }
   for (const auto& w : gltf.warnings) std::cerr << path << ": warning: " << w << "\n";
   scene_.input_images.insert(scene_.input_images.end(), gltf.image_files.begin(), gltf.image_files.end());
+  scene_.input_files.push_back(path);
+  scene_.input_files.insert(scene_.input_files.end(), gltf.buffer_files.begin(), gltf.buffer_files.end());
   add_gltf(gltf, remap, sampling);
 }
 

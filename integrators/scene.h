@@ -48,6 +48,9 @@ struct Scene {
   /// Image files the scene was built from (textures, environment maps), as the loader resolved them: an output
   /// must not be written over one of them.
   std::vector<std::string> input_images;
+  /// The other files the scene was built from besides `source`: glTF files a JSON scene includes and every glTF
+  /// file's external buffers, resolved. With input_images, what a cached compare reference depends on.
+  std::vector<std::string> input_files;
   /// Set when the file has no camera and `camera` was generated to frame these bounds for the film's aspect ratio
   /// (app/json_scene.h, frame_bounds): a new image size calls for framing them again.
   std::optional<Bounds3> framed;

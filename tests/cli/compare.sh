@@ -2,8 +2,9 @@
 # End-to-end test of `lumis compare` on 8x8 to 32x32 renders of the built-in scene: the files it writes, the report
 # contents, what the pipeline computes (each variant its own integrator, the metrics of lumis diff, the convergence
 # series, the default reference spp, a reference that lumis render reproduces from its key, equal time, --spp over a
-# scene's time budget), reference caching (also per glTF camera), usage errors, and (when /usr/bin/chromium exists)
-# that index.html's script runs in headless Chromium; options no variant uses are warned about.
+# scene's time budget), reference caching (also per glTF camera and per file the scene reads), usage errors, and (when
+# /usr/bin/chromium exists) that index.html's script runs in headless Chromium; options no variant uses are warned
+# about.
 # Usage: compare.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: compare.sh path/to/lumis}
@@ -242,6 +243,62 @@ for name in Side Lens; do
   expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera "$name"
   grep -q '"source": "cached"' "$T/cams/report.json" || fail "reference not reused for camera 1 named $name"
 done
+
+# The cached reference also belongs to the files the scene reads: a JSON scene's included glTF file, a glTF file's
+# buffer and its texture. Changing any one renders a new reference; the same bytes reuse it, wherever they are.
+mkdir "$T/inputs"
+python3 - "$T/inputs" <<'PY' || fail "could not write the scenes with inputs"
+import json, struct, sys
+d = sys.argv[1]
+data = struct.pack("<9f", -1, -1, -2, 1, -1, -2, 0, 1, -2) + struct.pack("<6f", 0, 0, 1, 0, 0, 1)
+open(d + "/tri.bin", "wb").write(data)
+gltf = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 1]}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 1.2, "znear": 0.01}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+        "textures": [{"source": 0}], "images": [{"uri": "tex.png"}],
+        "buffers": [{"byteLength": len(data), "uri": "tri.bin"}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [-1, -1, -2], "max": [1, 1, -2]},
+                      {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]}
+json.dump(gltf, open(d + "/tri.gltf", "w"))
+json.dump({"shapes": [{"type": "gltf", "file": "tri.gltf"}], "camera": {"from": [0, 0, 1], "to": [0, 0, -2]},
+           "lights": [{"type": "environment", "radiance": [1, 1, 1]}]}, open(d + "/inc.json", "w"))
+PY
+oiiotool --pattern constant:color=0.2,0.4,0.6 4x4 3 -d uint8 -o "$T/inputs/tex.png" ||
+  fail "oiiotool could not write the texture"
+IN=(--width 8 --height 8 --spp 1 --reference-spp 4 --integrators nee_mis -q)
+source_is() {  # source_is SCENE OUT rendered|cached WHY: compare SCENE into OUT; the reference must be WHY's source
+  expect 0 "$LUMIS" compare "$1" "${IN[@]}" -o "$2"
+  grep -q "\"source\": \"$3\"" "$2/report.json" || fail "$4: $(grep -A3 '"reference"' "$2/report.json")"
+}
+for scene in inc.json tri.gltf; do
+  source_is "$T/inputs/$scene" "$T/in-$scene" rendered "$scene: first run"
+  source_is "$T/inputs/$scene" "$T/in-$scene" cached "$scene: reference not reused"
+done
+oiiotool --pattern constant:color=0.6,0.4,0.2 4x4 3 -d uint8 -o "$T/inputs/tex.png" ||
+  fail "oiiotool could not rewrite the texture"
+python3 - "$T/inputs" <<'PY' || fail "could not rewrite tri.bin"
+import struct, sys
+d = sys.argv[1]
+data = bytearray(open(d + "/tri.bin", "rb").read())
+data[0:4] = struct.pack("<f", -0.5)  # the first vertex moves; byteLength is unchanged
+open(d + "/tri.bin.new", "wb").write(data)
+PY
+for scene in inc.json tri.gltf; do
+  source_is "$T/inputs/$scene" "$T/in-$scene" rendered "$scene: reference reused after its texture changed"
+done
+mv "$T/inputs/tri.bin.new" "$T/inputs/tri.bin"
+for scene in inc.json tri.gltf; do
+  source_is "$T/inputs/$scene" "$T/in-$scene" rendered "$scene: reference reused after its buffer changed"
+done
+printf ' ' >> "$T/inputs/tri.gltf"  # the included glTF file's own bytes
+source_is "$T/inputs/inc.json" "$T/in-inc.json" rendered "inc.json: reference reused after its glTF file changed"
+# The same bytes in another folder (the project moved) reuse the reference.
+cp -r "$T/inputs" "$T/moved"
+source_is "$T/moved/inc.json" "$T/in-inc.json" cached "inc.json: reference not reused after the project moved"
 
 # A run that fails part way leaves no report of the earlier run beside images it replaced: the report goes first.
 SMALL8=(--width 8 --height 8 --spp 1 --reference-spp 4 --integrators bsdf,nee_mis -q)
