@@ -321,6 +321,27 @@ expect 2 "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/rerun" --referenc
 grep -qF "is the bsdf.exr this run writes in $T/rerun" "$T/err" || fail "reference in -o: $(cat "$T/err")"
 cmp -s "$T/bsdf-before.exr" "$T/rerun/bsdf.exr" || fail "the given reference was overwritten"
 
+# Nor may a file the run writes in DIR be the scene file or a file the scene reads (also through a link): the scene
+# file named report.json in DIR, a texture linked as nee_mis.png, a glTF buffer linked as reference.exr. Each is
+# refused before DIR is touched, and left as it was.
+cp -r "$T/inputs" "$T/self" && mv "$T/self/inc.json" "$T/self/report.json"
+mkdir "$T/link-tex" "$T/link-bin"
+ln -s "$T/inputs/tex.png" "$T/link-tex/nee_mis.png"
+ln -s "$T/inputs/tri.bin" "$T/link-bin/reference.exr"
+cp "$T/inputs/tex.png" "$T/tex-before.png" && cp "$T/inputs/tri.bin" "$T/bin-before.bin" &&
+  cp "$T/self/report.json" "$T/scene-before.json" || fail "could not copy the inputs"
+expect 2 "$LUMIS" compare "$T/self/report.json" "${IN[@]}" -o "$T/self"
+grep -qF "this run writes report.json there, which is the scene file ($T/self/report.json)" "$T/err" ||
+  fail "scene file in -o: $(cat "$T/err")"
+expect 2 "$LUMIS" compare "$T/inputs/inc.json" "${IN[@]}" -o "$T/link-tex"
+grep -qF "writes nee_mis.png there, which is a file the scene reads ($T/inputs/tex.png)" "$T/err" ||
+  fail "texture in -o: $(cat "$T/err")"
+expect 2 "$LUMIS" compare "$T/inputs/tri.gltf" "${IN[@]}" -o "$T/link-bin"
+grep -qF "writes reference.exr there, which is a file the scene reads ($T/inputs/tri.bin)" "$T/err" ||
+  fail "buffer in -o: $(cat "$T/err")"
+cmp -s "$T/self/report.json" "$T/scene-before.json" && cmp -s "$T/inputs/tex.png" "$T/tex-before.png" &&
+  cmp -s "$T/inputs/tri.bin" "$T/bin-before.bin" || fail "compare changed a file the scene reads"
+
 # An output folder that cannot be written in fails before the reference is rendered (not as root, who can write).
 mkdir "$T/readonly" && chmod a-w "$T/readonly"
 if ! touch "$T/readonly/probe" 2>/dev/null; then
