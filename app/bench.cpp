@@ -100,6 +100,14 @@ int run_bench(const BenchOptions& o) {
       std::cerr << "lumis: bench: " << o.json_out << ": " << problem << "\n";
       return 2;
     }
+    for (const BenchScene& sc : scenes) {
+      std::error_code ec;
+      if (!sc.generated && fs::equivalent(o.json_out, sc.path, ec)) {
+        std::cerr << "lumis: bench: --json " << o.json_out << " is the scene file " << sc.path
+                  << "; write the results elsewhere\n";
+        return 2;
+      }
+    }
   }
 
   int status = 0;
@@ -141,6 +149,16 @@ int run_bench(const BenchOptions& o) {
 
   print_bench_report(report);
   if (!o.json_out.empty()) {
+    // A scene's own inputs (a texture, a glTF file or buffer) are known only once it has loaded.
+    for (const SceneResult& res : report.scenes)
+      for (const std::string& input : res.inputs) {
+        std::error_code ec;
+        if (fs::equivalent(o.json_out, input, ec)) {
+          std::cerr << "lumis: bench: --json " << o.json_out << " is a file scene " << res.name << " reads ("
+                    << input << "); results not written\n";
+          return 2;
+        }
+      }
     if (const std::string why = write_file_atomically(o.json_out, bench_report_json(report) + "\n"); !why.empty()) {
       std::cerr << "lumis: " << o.json_out << ": " << why << "\n";
       return 1;

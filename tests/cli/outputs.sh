@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Where an output cannot be written, lumis says so before doing any work (render, diff's heatmap, bench's JSON and
-# scene list), naming the path given and not a temporary one; options that cannot take effect are refused (AOVs in
-# a PNG) or named in a warning (--mis-light-probability without the mis integrator); command-line errors start
-# with "lumis: " and give the accepted range; --uniform-measure takes the scene file's spelling too; --width or
-# --height alone keeps the aspect ratio; --camera is refused for a JSON scene; diff compares grey images; an empty
-# file name is a usage error; -o may not name an image the scene reads; a write
-# cut short (a file-size limit standing in for a full disk) fails render, diff and compare without a short file,
-# and output lost on stdout is an error too.
+# Where an output cannot be written, lumis says so before doing any work (render, diff's heatmap, bench's JSON and scene
+# list), naming the path given and not a temporary one; options that cannot take effect are refused (AOVs in a PNG) or
+# named in a warning (--mis-light-probability without the mis integrator); command-line errors start with "lumis: " and
+# give the accepted range; --uniform-measure takes the scene file's spelling too; --width or --height alone keeps the
+# aspect ratio; --camera is refused for a JSON scene; diff compares grey images; an empty file name is a usage error; -o
+# may not name an image the scene reads, nor bench --json the scene file or a file it reads; a write cut short (a
+# file-size limit standing in for a full disk) fails render, diff and compare without a short file, and output lost on
+# stdout is an error too.
 # Usage: outputs.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: outputs.sh path/to/lumis}
@@ -182,4 +182,15 @@ for pair in "env.json env.exr" "env.json env-link.exr" "tex.json tex.png" "inc.j
   rm -f "$T/own/before"
 done
 expect 0 "$LUMIS" render "$T/own/tri.gltf" -o "$T/own/other.png" --width 8 --spp 1 -q
+# bench --json naming the scene file is refused before anything is measured; naming a file the scene reads (known
+# once it has loaded) keeps the results from being written over it.
+cp "$T/own/inc.json" "$T/own/inc-before.json" && cp "$T/own/gtex.png" "$T/own/gtex-before.png" ||
+  fail "could not copy the scene files"
+quick 2 "$LUMIS" bench "$T/own/inc.json" --quick --json "$T/own/inc.json"
+has "lumis: bench: --json $T/own/inc.json is the scene file $T/own/inc.json; write the results elsewhere"
+[ ! -s "$T/out" ] || fail "bench measured a scene before refusing --json: $(cat "$T/out")"
+quick 2 "$LUMIS" bench "$T/own/inc.json" --quick --json "$T/own/gtex.png"
+has "lumis: bench: --json $T/own/gtex.png is a file scene inc reads ($T/own/gtex.png); results not written"
+cmp -s "$T/own/inc.json" "$T/own/inc-before.json" && cmp -s "$T/own/gtex.png" "$T/own/gtex-before.png" ||
+  fail "bench --json wrote over a file the scene reads"
 echo "output and option checks passed"
