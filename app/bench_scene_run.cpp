@@ -90,8 +90,7 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   auto t0 = BenchClock::now();
   std::unique_ptr<Scene> scene = load_scene(which.path);
   std::vector<double> loads{seconds_since(t0)};
-  for (const auto* list : {&scene->input_files, &scene->input_images})
-    res.inputs.insert(res.inputs.end(), list->begin(), list->end());
+  res.inputs = scene->inputs();
 
   RenderSettings& s = scene->settings;
   // The benchmark's defaults, then the command line's (--width alone keeps them square, as any override does).

@@ -70,9 +70,8 @@ int prepare(const CompareArgs& args, const std::string& scene_path, const fs::pa
     // Like render's -o: no file this run writes in DIR may be the scene file or a file the scene reads.
     std::vector<std::string> outputs = output_file_names(names);
     if (args.reference.empty()) outputs.insert(outputs.end(), {"reference.exr", "reference.json"});
-    std::vector<std::string> inputs = {scene_path};
-    for (const auto* list : {&scene->input_files, &scene->input_images})
-      inputs.insert(inputs.end(), list->begin(), list->end());
+    std::vector<std::string> inputs = scene->inputs();
+    inputs.insert(inputs.begin(), scene_path);
     for (const std::string& f : outputs)
       for (const std::string& input : inputs)
         if (fs::equivalent(dir / f, input, ec))

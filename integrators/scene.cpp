@@ -9,6 +9,12 @@ void Scene::finalize() {
   update_light_selector();
 }
 
+std::vector<std::string> Scene::inputs() const {
+  std::vector<std::string> all = input_files;
+  all.insert(all.end(), input_images.begin(), input_images.end());
+  return all;
+}
+
 void Scene::update_light_selector() {
   std::vector<const Light*> ptrs;
   for (auto& l : lights) ptrs.push_back(l.get());

@@ -59,6 +59,8 @@ struct Scene {
   void finalize();
   /// Rebuild the light selector after settings.light_selection changed.
   void update_light_selector();
+  /// Every file the scene was built from besides `source`: input_files, then input_images.
+  std::vector<std::string> inputs() const;
 };
 
 }  // namespace lumis
