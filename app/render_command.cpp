@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "app/commands.h"
 #include "app/memory_check.h"
@@ -78,12 +80,15 @@ int run_render(const RenderArgs& args) {
     std::cerr << "lumis: " << scene_path << ": " << e.what() << "\n";
     return 1;
   }
-  // The scene's own images (an environment map, a texture) are known only now: -o must not replace one of them
-  // (through a symbolic or hard link too).
-  for (const std::string& input : scene->input_images) {
+  // The files the scene reads (an environment map, a texture, a glTF file or buffer) are known only now: -o must not
+  // replace one of them, nor the scene file itself (through a symbolic or hard link too).
+  std::vector<std::string> inputs = scene->inputs();
+  inputs.insert(inputs.begin(), scene_path);
+  for (const std::string& input : inputs) {
     std::error_code ec;
     if (std::filesystem::equivalent(out, input, ec)) {
-      std::cerr << "lumis: " << out << ": is an image the scene reads (" << input << "); write the render elsewhere\n";
+      std::cerr << "lumis: " << out << ": is " << (input == scene_path ? "the scene file" : "a file the scene reads")
+                << " (" << input << "); write the render elsewhere\n";
       return 2;
     }
   }

@@ -45,11 +45,10 @@ struct Scene {
   Camera camera;
   RenderSettings settings;
   std::string source;        ///< file the scene came from (for messages)
-  /// Image files the scene was built from (textures, environment maps), as the loader resolved them: an output
-  /// must not be written over one of them.
+  /// Image files the scene was built from (textures, environment maps), as the loader resolved them.
   std::vector<std::string> input_images;
   /// The other files the scene was built from besides `source`: glTF files a JSON scene includes and every glTF
-  /// file's external buffers, resolved. With input_images, what a cached compare reference depends on.
+  /// file's external buffers, resolved.
   std::vector<std::string> input_files;
   /// Set when the file has no camera and `camera` was generated to frame these bounds for the film's aspect ratio
   /// (app/json_scene.h, frame_bounds): a new image size calls for framing them again.
@@ -59,7 +58,8 @@ struct Scene {
   void finalize();
   /// Rebuild the light selector after settings.light_selection changed.
   void update_light_selector();
-  /// Every file the scene was built from besides `source`: input_files, then input_images.
+  /// Every file the scene was built from besides `source`, input_files then input_images: what a cached compare
+  /// reference depends on, and what no output (render -o, compare's folder, bench --json) may be written over.
   std::vector<std::string> inputs() const;
 };
 

@@ -4,9 +4,9 @@
 # named in a warning (--mis-light-probability without the mis integrator); command-line errors start with "lumis: " and
 # give the accepted range; --uniform-measure takes the scene file's spelling too; --width or --height alone keeps the
 # aspect ratio; --camera is refused for a JSON scene; diff compares grey images; an empty file name is a usage error; -o
-# may not name an image the scene reads, nor bench --json the scene file or a file it reads; a write cut short (a
-# file-size limit standing in for a full disk) fails render, diff and compare without a short file, and output lost on
-# stdout is an error too.
+# may not name the scene file or a file it reads, nor bench --json the scene file or a file it reads; a write cut short
+# (a file-size limit standing in for a full disk) fails render, diff and compare without a short file, and output lost
+# on stdout is an error too.
 # Usage: outputs.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: outputs.sh path/to/lumis}
@@ -140,9 +140,9 @@ has "$T/no-such-scene.json: file not found"
 [ ! -s "$T/out" ] || fail "bench printed a report: $(cat "$T/out")"
 quick 2 "$LUMIS" bench "$SCENE" --json "$T/no-such-folder/b.json"
 has "the folder $T/no-such-folder does not exist"
-# -o naming an image the scene reads (its environment map, a texture of the scene or of a glTF file it loads, or of a
-# glTF file rendered directly; also through a link) is refused before rendering, and the image is left as it was: a
-# render once replaced the scene's environment map with itself.
+# -o naming a file the scene reads (its environment map, a texture of the scene or of a glTF file it loads, or of a
+# glTF file rendered directly, a glTF buffer named like an image) or the scene file itself (also through a link) is
+# refused before rendering, and the file is left as it was: a render once replaced the scene's environment map.
 mkdir "$T/own"
 need python3 python3
 python3 - "$T/own" <<'PY' || fail "could not write the scenes that read images"
@@ -168,16 +168,23 @@ gltf = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "no
 json.dump(gltf, open(d + "/tri.gltf", "w"))
 json.dump({"materials": mat, "shapes": [{"type": "gltf", "file": "tri.gltf"}],
            "lights": [{"type": "environment", "radiance": [1, 1, 1]}]}, open(d + "/inc.json", "w"))
+open(d + "/buf.png", "wb").write(pos)  # an external buffer named like an image
+gltf["buffers"][0]["uri"] = "buf.png"
+json.dump(gltf, open(d + "/ext.gltf", "w"))
 PY
 oiiotool --pattern constant:color=0.5,0.5,0.5 8x4 3 -d half -o "$T/own/env.exr" &&
   oiiotool --pattern constant:color=0.2,0.4,0.6 4x4 3 -d uint8 -o "$T/own/tex.png" &&
   cp "$T/own/tex.png" "$T/own/gtex.png" || fail "oiiotool could not write the scenes' images"
 ln -s env.exr "$T/own/env-link.exr"
-for pair in "env.json env.exr" "env.json env-link.exr" "tex.json tex.png" "inc.json gtex.png" "tri.gltf gtex.png"; do
+ln -s tex.json "$T/own/tex-link.png"
+for pair in "env.json env.exr" "env.json env-link.exr" "tex.json tex.png" "inc.json gtex.png" "tri.gltf gtex.png" \
+            "ext.gltf buf.png" "tex.json tex-link.png"; do
   read -r scene image <<< "$pair"
-  cp -P "$T/own/$image" "$T/own/before"
+  what="a file the scene reads"
+  [ "$image" != tex-link.png ] || what="the scene file"
+  cp -L "$T/own/$image" "$T/own/before"  # the contents, also through a link
   quick 2 "$LUMIS" render "$T/own/$scene" -o "$T/own/$image" --width 8 --spp 1 -q
-  has "lumis: $T/own/$image: is an image the scene reads ($T/own/"
+  has "lumis: $T/own/$image: is $what ($T/own/"
   cmp -s "$T/own/$image" "$T/own/before" || fail "rendering $scene changed $image"
   rm -f "$T/own/before"
 done
