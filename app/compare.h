@@ -26,6 +26,9 @@ std::vector<std::string> parse_integrator_list(const std::string& text);
 
 /// 64-bit FNV-1a as 16 hex digits.
 std::string fnv1a_hex(const std::string& bytes);
+/// fnv1a_hex of a file's bytes, read in 1 MiB pieces rather than whole (an environment map can be gigabytes); a
+/// file that cannot be opened hashes as empty.
+std::string fnv1a_file_hex(const std::string& path);
 /// The settings that change a reference rendering, as a JSON object (stored in reference.json).
 nlohmann::json reference_key(const RenderSettings& s, uint32_t reference_spp);
 /// Hash of the scene file's bytes and reference_key: a cached reference is reused only when this matches.

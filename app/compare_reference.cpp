@@ -70,7 +70,7 @@ Image cached_reference(Scene& scene, const CompareArgs& args, const RenderSettin
   // The files the scene file refers to change the image as its own bytes do: their contents (not their paths, so
   // that a moved project keeps its reference) are hashed, glTF files and buffers first, then images, in load order.
   std::string inputs;
-  for (const std::string& file : scene.inputs()) inputs += "\ninput " + fnv1a_hex(read_file_bytes(file));
+  for (const std::string& file : scene.inputs()) inputs += "\ninput " + fnv1a_file_hex(file);
   const std::string hash = reference_hash(read_file_bytes(scene_path) + camera + inputs, base, ref_spp);
   const fs::path exr = dir / "reference.exr", meta = dir / "reference.json";
   bool cached = false;

@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "app/compare.h"
 #include "integrators/integrator.h"
@@ -13,6 +14,18 @@
 namespace lumis {
 
 namespace {
+
+/// FNV-1a 64 of data[0, n), continuing from `h` (the hash of the bytes before them; by default none).
+uint64_t fnv1a(const unsigned char* data, size_t n, uint64_t h = 0xcbf29ce484222325ull) {
+  for (size_t i = 0; i < n; ++i) h = (h ^ data[i]) * 0x100000001b3ull;
+  return h;
+}
+
+std::string hex16(uint64_t h) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
 
 std::vector<std::string> split(const std::string& text, char sep) {
   std::vector<std::string> parts;
@@ -123,14 +136,18 @@ std::vector<std::string> parse_integrator_list(const std::string& text) {
 }
 
 std::string fnv1a_hex(const std::string& bytes) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 0x100000001b3ull;
+  return hex16(fnv1a(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()));
+}
+
+std::string fnv1a_file_hex(const std::string& path) {
+  uint64_t h = fnv1a(nullptr, 0);
+  if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
+    std::vector<unsigned char> piece(size_t{1} << 20);
+    size_t n;
+    while ((n = std::fread(piece.data(), 1, piece.size(), f)) > 0) h = fnv1a(piece.data(), n, h);
+    std::fclose(f);
   }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
+  return hex16(h);
 }
 
 uint32_t reference_seed(uint32_t seed) { return seed ^ 0x9e3779b9u; }

@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <limits>
+#include <string>
 
 #include "app/compare.h"
 #include "app/montage.h"
@@ -90,6 +93,26 @@ TEST(CompareReference, HashFollowsWhatChangesTheImage) {
   EXPECT_NE(reference_seed(0), 0u);
   EXPECT_NE(reference_seed(7), 7u);
   EXPECT_EQ(fnv1a_hex(""), "cbf29ce484222325");  // FNV-1a 64 offset basis
+  EXPECT_EQ(fnv1a_hex("a"), "af63dc4c8601ec8c");  // the published FNV-1a 64 test vector
+}
+
+// A file is hashed in 1 MiB pieces: the result is the hash of its whole contents, across the pieces' seams.
+TEST(CompareReport, FileHashEqualsTheHashOfItsContents) {
+  std::string bytes(3 * (size_t{1} << 20) + 17, '\0');
+  uint32_t x = 12345;
+  for (char& c : bytes) c = static_cast<char>((x = x * 1664525u + 1013904223u) >> 24);
+  const std::string path = ::testing::TempDir() + "lumis_fnv_file.bin";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    ASSERT_NE(f, nullptr);
+    ASSERT_EQ(std::fwrite(bytes.data(), 1, bytes.size(), f), bytes.size());
+    std::fclose(f);
+  }
+  EXPECT_EQ(fnv1a_file_hex(path), fnv1a_hex(bytes));
+  bytes.back() ^= 1;  // the last byte of the last piece counts
+  EXPECT_NE(fnv1a_file_hex(path), fnv1a_hex(bytes));
+  std::remove(path.c_str());
+  EXPECT_EQ(fnv1a_file_hex(path), fnv1a_hex(""));  // gone: hashed as empty, as before
 }
 
 // The error pictures share one scale: the worst variant's 99.5th percentile, ignoring NaN and one firefly.
