@@ -70,14 +70,10 @@ int prepare(const CompareArgs& args, const std::string& scene_path, const fs::pa
     // Like render's -o: no file this run writes in DIR may be the scene file or a file the scene reads.
     std::vector<std::string> outputs = output_file_names(names);
     if (args.reference.empty()) outputs.insert(outputs.end(), {"reference.exr", "reference.json"});
-    std::vector<std::string> inputs = scene->inputs();
-    inputs.insert(inputs.begin(), scene_path);
     for (const std::string& f : outputs)
-      for (const std::string& input : inputs)
-        if (fs::equivalent(dir / f, input, ec))
-          throw UsageError("compare: -o " + dir.string() + ": this run writes " + f + " there, which is " +
-                           (input == scene_path ? "the scene file" : "a file the scene reads") + " (" + input +
-                           "); give another -o");
+      if (const std::string file = scene_file_at((dir / f).string(), scene_path, *scene); !file.empty())
+        throw UsageError("compare: -o " + dir.string() + ": this run writes " + f + " there, which is " + file +
+                         "; give another -o");
     apply_overrides(args.overrides, *scene);
     scene->update_light_selector();
     if (!args.crop.empty()) crop = parse_crop(args.crop, scene->settings.width, scene->settings.height);

@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <iostream>
 #include <string>
-#include <vector>
 
 #include "app/commands.h"
 #include "app/memory_check.h"
@@ -81,16 +80,10 @@ int run_render(const RenderArgs& args) {
     return 1;
   }
   // The files the scene reads (an environment map, a texture, a glTF file or buffer) are known only now: -o must not
-  // replace one of them, nor the scene file itself (through a symbolic or hard link too).
-  std::vector<std::string> inputs = scene->inputs();
-  inputs.insert(inputs.begin(), scene_path);
-  for (const std::string& input : inputs) {
-    std::error_code ec;
-    if (std::filesystem::equivalent(out, input, ec)) {
-      std::cerr << "lumis: " << out << ": is " << (input == scene_path ? "the scene file" : "a file the scene reads")
-                << " (" << input << "); write the render elsewhere\n";
-      return 2;
-    }
+  // replace one of them, nor the scene file itself.
+  if (const std::string file = scene_file_at(out, scene_path, *scene); !file.empty()) {
+    std::cerr << "lumis: " << out << ": is " << file << "; write the render elsewhere\n";
+    return 2;
   }
   RenderSettings& s = scene->settings;
   for (const std::string& w : unused_overrides(args.overrides, {s.integrator}))

@@ -11,6 +11,8 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "app/json_scene.h"
 #include "app/scene_loader_internal.h"
@@ -194,6 +196,17 @@ std::unique_ptr<Scene> load_scene(const std::string& path, const SceneLoadOption
 
 std::unique_ptr<Scene> load_scene_text(const std::string& text, const std::string& path) {
   return load_json_scene(text, path);
+}
+
+std::string scene_file_at(const std::string& out, const std::string& path, const Scene& scene) {
+  std::vector<std::string> files = scene.inputs();
+  files.insert(files.begin(), path);
+  for (const std::string& file : files) {
+    std::error_code ec;
+    if (std::filesystem::equivalent(out, file, ec))
+      return (file == path ? "the scene file (" : "a file the scene reads (") + file + ")";
+  }
+  return "";
 }
 
 }  // namespace lumis

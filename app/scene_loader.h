@@ -24,6 +24,10 @@ struct SceneLoadOptions {
 /// a JSON scene.
 std::unique_ptr<Scene> load_scene(const std::string& path, const SceneLoadOptions& options = {});
 
+/// Which of the files `scene` was loaded from a write to `out` would replace (through a symbolic or hard link too):
+/// "the scene file (PATH)" for `path`, "a file the scene reads (PATH)" for one of Scene::inputs(), or "" for none.
+std::string scene_file_at(const std::string& out, const std::string& path, const Scene& scene);
+
 /// Load a lumis JSON scene from text already in memory (as if read from `path`, which names it in messages and
 /// anchors relative paths). Throws SceneError like load_scene.
 std::unique_ptr<Scene> load_scene_text(const std::string& text, const std::string& path);

@@ -97,7 +97,7 @@ TEST(CompareReference, HashFollowsWhatChangesTheImage) {
 }
 
 // A file is hashed in 1 MiB pieces: the result is the hash of its whole contents, across the pieces' seams.
-TEST(CompareReport, FileHashEqualsTheHashOfItsContents) {
+TEST(CompareReference, FileHashEqualsTheHashOfItsContents) {
   std::string bytes(3 * (size_t{1} << 20) + 17, '\0');
   uint32_t x = 12345;
   for (char& c : bytes) c = static_cast<char>((x = x * 1664525u + 1013904223u) >> 24);
