@@ -24,15 +24,19 @@ CropRect parse_crop(const std::string& text, int width, int height);
 /// Parse a comma-separated list of integrator names; throws std::invalid_argument on unknown or repeated names.
 std::vector<std::string> parse_integrator_list(const std::string& text);
 
-/// 64-bit FNV-1a as 16 hex digits.
-std::string fnv1a_hex(const std::string& bytes);
+/// 64-bit FNV-1a as 16 hex digits; with `after` (an earlier result), the hash of the bytes that gave it followed by
+/// `bytes` (FNV-1a carries nothing else from one byte to the next). Throws std::invalid_argument on a malformed
+/// `after`.
+std::string fnv1a_hex(const std::string& bytes, const std::string& after = "");
 /// fnv1a_hex of a file's bytes, read in 1 MiB pieces rather than whole (an environment map can be gigabytes); a
 /// file that cannot be opened hashes as empty.
 std::string fnv1a_file_hex(const std::string& path);
 /// The settings that change a reference rendering, as a JSON object (stored in reference.json).
 nlohmann::json reference_key(const RenderSettings& s, uint32_t reference_spp);
-/// Hash of the scene file's bytes and reference_key: a cached reference is reused only when this matches.
-std::string reference_hash(const std::string& scene_bytes, const RenderSettings& s, uint32_t reference_spp);
+/// Hash of the scene file's bytes (given as their fnv1a_hex), then `then` (the camera and the hashes of the files the
+/// scene reads), then reference_key: a cached reference is reused only when this matches.
+std::string reference_hash(const std::string& scene_file_hash, const std::string& then, const RenderSettings& s,
+                           uint32_t reference_spp);
 /// The seed the reference is rendered with: never the comparison seed, so that nee_mis's samples are not the
 /// reference's first samples (which would make its error look smaller than it is).
 uint32_t reference_seed(uint32_t seed);

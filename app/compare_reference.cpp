@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -54,6 +55,57 @@ Image read_reference(const std::string& path, const RenderSettings& s, const std
   return reference;
 }
 
+namespace {
+
+/// A file the scene reads, and the fnv1a_file_hex of its contents.
+struct HashedInput {
+  std::string file, hash;
+};
+
+/// At most three of `items`, then how many more, joined by ", ".
+std::string some_of(const std::vector<std::string>& items) {
+  std::string text;
+  for (size_t i = 0; i < items.size() && i < 3; ++i) text += (i ? ", " : "") + items[i];
+  if (items.size() > 3) text += " and " + std::to_string(items.size() - 3) + " more";
+  return text;
+}
+
+/// Why a cached reference, whose reference.json is `old` and whose hash differs, is not the one wanted: its key's
+/// settings, the scene file, the files the scene reads, or else (as nothing else enters the hash) the camera.
+std::string why_stale(const nlohmann::json& old, const nlohmann::json& key, const std::string& scene_hash,
+                      const std::vector<HashedInput>& inputs) {
+  std::vector<std::string> why, settings, files;
+  const nlohmann::json& old_key = old.at("key");
+  // The key holds the reference's own seed; a person set the variants' seed (--seed), so that is the one shown.
+  const auto shown = [](const std::string& name, const nlohmann::json& v) {
+    return name == "seed" && v.is_number_unsigned() ? std::to_string(reference_seed(v.get<uint32_t>())) : v.dump();
+  };
+  for (const auto& [name, value] : key.items())
+    if (!old_key.contains(name) || old_key[name] != value)
+      settings.push_back(name + " " + (old_key.contains(name) ? shown(name, old_key[name]) : "unset") + " -> " +
+                         shown(name, value));
+  if (!settings.empty()) why.push_back("settings changed: " + some_of(settings));
+  if (!old.contains("scene_fnv1a") || !old.contains("inputs"))  // written before lumis recorded them
+    return why.empty() ? "cached by an older lumis, which did not record the scene's files" : why.front();
+  if (old.at("scene_fnv1a").get<std::string>() != scene_hash) why.push_back("the scene file changed");
+  std::map<std::string, std::string> before;
+  for (const nlohmann::json& in : old.at("inputs")) before[in.at("file").get<std::string>()] = in.at("fnv1a");
+  for (const HashedInput& in : inputs) {
+    const auto it = before.find(in.file);
+    if (it == before.end()) files.push_back(in.file + " (new)");
+    else if (it->second != in.hash) files.push_back(in.file);
+    if (it != before.end()) before.erase(it);
+  }
+  for (const auto& [file, hash] : before) files.push_back(file + " (no longer read)");
+  if (!files.empty()) why.push_back("changed: " + some_of(files));
+  if (why.empty()) why.push_back("the camera changed");
+  std::string text;
+  for (const std::string& w : why) text += (text.empty() ? "" : "; ") + w;
+  return text;
+}
+
+}  // namespace
+
 Image cached_reference(Scene& scene, const CompareArgs& args, const RenderSettings& base, const std::string& scene_path,
                        const fs::path& dir, CompareReport& report, const std::function<void(const std::string&)>& log) {
   Image reference;
@@ -69,24 +121,36 @@ Image cached_reference(Scene& scene, const CompareArgs& args, const RenderSettin
                 c.to.x, c.to.y, c.to.z, c.up.x, c.up.y, c.up.z, c.fov_y_degrees, c.near_clip);
   // The files the scene file refers to change the image as its own bytes do: their contents (not their paths, so
   // that a moved project keeps its reference) are hashed, glTF files and buffers first, then images, in load order.
+  std::vector<HashedInput> hashed;
   std::string inputs;
-  for (const std::string& file : scene.inputs()) inputs += "\ninput " + fnv1a_file_hex(file);
-  const std::string hash = reference_hash(read_file_bytes(scene_path) + camera + inputs, base, ref_spp);
+  for (const std::string& file : scene.inputs()) {
+    hashed.push_back({file, fnv1a_file_hex(file)});
+    inputs += "\ninput " + hashed.back().hash;
+  }
+  const std::string scene_hash = fnv1a_file_hex(scene_path);
+  const nlohmann::json key = reference_key(base, ref_spp);
+  const std::string hash = reference_hash(scene_hash, camera + inputs, base, ref_spp);
   const fs::path exr = dir / "reference.exr", meta = dir / "reference.json";
   bool cached = false;
+  std::string stale;  // why a reference found in DIR is not used
   if (fs::exists(exr) && fs::exists(meta)) {
     try {
       const nlohmann::json j = nlohmann::json::parse(read_file_bytes(meta.string()));
-      if (j.value("hash", "") == hash) {
+      if (j.at("hash").get<std::string>() != hash) {
+        stale = why_stale(j, key, scene_hash, hashed);
+      } else {
         reference = read_image(exr.string());
         rgb_channels(reference, exr.string());
         cached = reference.width == base.width && reference.height == base.height;
+        if (!cached) stale = "reference.exr is " + std::to_string(reference.width) + "x" +
+                             std::to_string(reference.height);
       }
-    } catch (const std::exception&) {
-      cached = false;  // unreadable cache: render a new reference
+    } catch (const std::exception& e) {
+      stale = std::string("unreadable: ") + e.what();  // render a new reference
     }
   }
   if (!cached) {
+    if (!stale.empty()) log("not reusing the cached reference (" + stale + ")");
     log("rendering reference (nee_mis, " + std::to_string(ref_spp) + " spp)");
     RenderSettings rs = base;
     rs.integrator = "nee_mis";
@@ -94,8 +158,10 @@ Image cached_reference(Scene& scene, const CompareArgs& args, const RenderSettin
     Rendered r = render_variant(scene, rs, ref_spp, 0);
     reference = std::move(r.image);
     write_image(exr.string(), reference);
-    nlohmann::json j = {{"hash", hash}, {"scene", scene_path}, {"key", reference_key(base, ref_spp)},
-                        {"seconds", r.stats.seconds}};
+    nlohmann::json files = nlohmann::json::array();
+    for (const HashedInput& in : hashed) files.push_back({{"file", in.file}, {"fnv1a", in.hash}});
+    nlohmann::json j = {{"hash", hash}, {"scene", scene_path}, {"key", key}, {"seconds", r.stats.seconds},
+                        {"scene_fnv1a", scene_hash}, {"inputs", files}};
     if (!args.overrides.camera.empty()) j["key"]["camera"] = args.overrides.camera;  // render's --camera
     write_text(meta, j.dump(2) + "\n");
   } else {

@@ -135,8 +135,14 @@ std::vector<std::string> parse_integrator_list(const std::string& text) {
   return names;
 }
 
-std::string fnv1a_hex(const std::string& bytes) {
-  return hex16(fnv1a(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()));
+std::string fnv1a_hex(const std::string& bytes, const std::string& after) {
+  uint64_t h = fnv1a(nullptr, 0);
+  if (!after.empty()) {
+    if (after.size() != 16 || after.find_first_not_of("0123456789abcdef") != std::string::npos)
+      throw std::invalid_argument("fnv1a_hex: '" + after + "' is not a hash");
+    h = std::stoull(after, nullptr, 16);
+  }
+  return hex16(fnv1a(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), h));
 }
 
 std::string fnv1a_file_hex(const std::string& path) {
@@ -180,8 +186,9 @@ nlohmann::json reference_key(const RenderSettings& s, uint32_t reference_spp) {
           {"mis_heuristic", heuristic_name(s.mis_heuristic)}};
 }
 
-std::string reference_hash(const std::string& scene_bytes, const RenderSettings& s, uint32_t reference_spp) {
-  return fnv1a_hex(scene_bytes + "\n--lumis reference key--\n" + reference_key(s, reference_spp).dump());
+std::string reference_hash(const std::string& scene_file_hash, const std::string& then, const RenderSettings& s,
+                           uint32_t reference_spp) {
+  return fnv1a_hex(then + "\n--lumis reference key--\n" + reference_key(s, reference_spp).dump(), scene_file_hash);
 }
 
 nlohmann::json report_json(const CompareReport& r) {

@@ -1,5 +1,7 @@
 #include "integrators/scene.h"
 
+#include <unordered_set>
+
 namespace lumis {
 
 void Scene::finalize() {
@@ -10,8 +12,11 @@ void Scene::finalize() {
 }
 
 std::vector<std::string> Scene::inputs() const {
-  std::vector<std::string> all = input_files;
-  all.insert(all.end(), input_images.begin(), input_images.end());
+  std::vector<std::string> all;
+  std::unordered_set<std::string> seen;
+  for (const std::vector<std::string>* files : {&input_files, &input_images})
+    for (const std::string& file : *files)
+      if (seen.insert(file).second) all.push_back(file);
   return all;
 }
 

@@ -58,8 +58,9 @@ struct Scene {
   void finalize();
   /// Rebuild the light selector after settings.light_selection changed.
   void update_light_selector();
-  /// Every file the scene was built from besides `source`, input_files then input_images: what a cached compare
-  /// reference depends on, and what no output (render -o, compare's folder, bench --json) may be written over.
+  /// Every file the scene was built from besides `source`, input_files then input_images, each path once (a glTF file
+  /// included twice, an image two glTF images name): what a cached compare reference depends on, and what no output
+  /// (render -o, compare's folder, bench --json) may be written over.
   std::vector<std::string> inputs() const;
 };
 

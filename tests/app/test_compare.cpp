@@ -73,27 +73,35 @@ TEST(CompareOptions, CropAndIntegratorList) {
 
 TEST(CompareReference, HashFollowsWhatChangesTheImage) {
   RenderSettings s;
-  const std::string scene = "{\"version\": 1}";
-  const std::string h = reference_hash(scene, s, 256);
+  const std::string scene = fnv1a_hex("{\"version\": 1}");  // the scene file's hash
+  const std::string h = reference_hash(scene, "", s, 256);
   EXPECT_EQ(h.size(), 16u);
-  EXPECT_EQ(h, reference_hash(scene, s, 256));
+  EXPECT_EQ(h, reference_hash(scene, "", s, 256));
+  // The recipe of earlier versions (the scene file's bytes, then the key), so that their cached references stay valid.
+  EXPECT_EQ(h, fnv1a_hex("{\"version\": 1}\n--lumis reference key--\n" + reference_key(s, 256).dump()));
   RenderSettings t = s;
   t.threads = 3;  // thread count does not change the image
   t.integrator = "uniform";  // nor does the comparison's integrator: the reference is always nee_mis
-  EXPECT_EQ(h, reference_hash(scene, t, 256));
-  EXPECT_NE(h, reference_hash(scene, s, 512));
-  EXPECT_NE(h, reference_hash(scene + " ", s, 256));
+  EXPECT_EQ(h, reference_hash(scene, "", t, 256));
+  EXPECT_NE(h, reference_hash(scene, "", s, 512));
+  EXPECT_NE(h, reference_hash(fnv1a_hex("{\"version\": 1} "), "", s, 256));
+  EXPECT_NE(h, reference_hash(scene, "\ninput cbf29ce484222325", s, 256));  // what follows the scene file counts
   for (auto change : {+[](RenderSettings& r) { r.width = 31; }, +[](RenderSettings& r) { r.max_depth = 2; },
                       +[](RenderSettings& r) { r.rr_depth = 0; }, +[](RenderSettings& r) { r.seed = 5; },
                       +[](RenderSettings& r) { r.light_selection = LightSelection::Uniform; }}) {
     RenderSettings u = s;
     change(u);
-    EXPECT_NE(h, reference_hash(scene, u, 256));
+    EXPECT_NE(h, reference_hash(scene, "", u, 256));
   }
   EXPECT_NE(reference_seed(0), 0u);
   EXPECT_NE(reference_seed(7), 7u);
   EXPECT_EQ(fnv1a_hex(""), "cbf29ce484222325");  // FNV-1a 64 offset basis
   EXPECT_EQ(fnv1a_hex("a"), "af63dc4c8601ec8c");  // the published FNV-1a 64 test vector
+  // An earlier result continues: the hash of "ab" then "cd" is that of "abcd".
+  EXPECT_EQ(fnv1a_hex("cd", fnv1a_hex("ab")), fnv1a_hex("abcd"));
+  EXPECT_EQ(fnv1a_hex("", fnv1a_hex("ab")), fnv1a_hex("ab"));
+  EXPECT_THROW(fnv1a_hex("cd", "af63dc4c8601ec8"), std::invalid_argument);   // 15 digits
+  EXPECT_THROW(fnv1a_hex("cd", "af63dc4c8601ec8g"), std::invalid_argument);  // not a hex digit
 }
 
 // A file is hashed in 1 MiB pieces: the result is the hash of its whole contents, across the pieces' seams.
@@ -109,6 +117,7 @@ TEST(CompareReference, FileHashEqualsTheHashOfItsContents) {
     std::fclose(f);
   }
   EXPECT_EQ(fnv1a_file_hex(path), fnv1a_hex(bytes));
+  EXPECT_EQ(fnv1a_hex("\ntail", fnv1a_file_hex(path)), fnv1a_hex(bytes + "\ntail"));
   bytes.back() ^= 1;  // the last byte of the last piece counts
   EXPECT_NE(fnv1a_file_hex(path), fnv1a_hex(bytes));
   std::remove(path.c_str());

@@ -2,9 +2,9 @@
 # End-to-end test of `lumis compare` on 8x8 to 32x32 renders of the built-in scene: the files it writes, the report
 # contents, what the pipeline computes (each variant its own integrator, the metrics of lumis diff, the convergence
 # series, the default reference spp, a reference that lumis render reproduces from its key, equal time, --spp over a
-# scene's time budget), reference caching (also per glTF camera and per file the scene reads), usage errors, and (when
-# /usr/bin/chromium exists) that index.html's script runs in headless Chromium; options no variant uses are warned
-# about.
+# scene's time budget), reference caching (also per glTF camera and per file the scene reads, and the reason a cached
+# reference is not reused), usage errors, and (when /usr/bin/chromium exists) that index.html's script runs in
+# headless Chromium; options no variant uses are warned about.
 # Usage: compare.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: compare.sh path/to/lumis}
@@ -83,8 +83,11 @@ c = v["convergence"]
 assert [p["spp"] for p in c] == [1, 2, 4, 5], c
 assert c[-1]["mse"] == v["mse"], (c[-1], v)
 PY
-expect 0 "$LUMIS" compare "$SCENE" "${SMALL[@]}" --spp 4 --integrators mis --seed 3 -o "$D" -q
+expect 0 "$LUMIS" compare "$SCENE" "${SMALL[@]}" --spp 4 --integrators mis --seed 3 -o "$D"
 grep -q '"source": "rendered"' "$D/report.json" || fail "reference reused after the seed changed"
+# The progress says why (the variants' seed, as --seed spells it, not the reference's own).
+grep -qF "compare: not reusing the cached reference (settings changed: seed 0 -> 3)" "$T/err" ||
+  fail "no reason for a new reference: $(cat "$T/err")"
 
 # Equal time with a given reference file; an option that neither variant uses is named in a warning (also with -q).
 expect 0 "$LUMIS" compare "$SCENE" --width 32 --height 32 --max-depth 2 --time 0.05 --integrators bsdf,light \
@@ -232,8 +235,11 @@ json.dump(gltf, open(sys.argv[1], "w"))
 PY
 CAM=(--width 8 --height 8 --spp 1 --reference-spp 4 --integrators nee_mis -o "$T/cams" -q)
 expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera 0
-expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera 1
+expect 0 "$LUMIS" compare "$T/cams.gltf" --width 8 --height 8 --spp 1 --reference-spp 4 --integrators nee_mis \
+  -o "$T/cams" --camera 1
 grep -q '"source": "rendered"' "$T/cams/report.json" || fail "reference reused for another camera"
+grep -qF "compare: not reusing the cached reference (the camera changed)" "$T/err" ||
+  fail "no reason for another camera's reference: $(cat "$T/err")"
 expect 0 "$LUMIS" compare "$T/cams.gltf" "${CAM[@]}" --camera 1
 grep -q '"source": "cached"' "$T/cams/report.json" || fail "reference not reused for the same camera"
 grep -q '"camera": "1"' "$T/cams/reference.json" ||
@@ -269,10 +275,15 @@ json.dump({"shapes": [{"type": "gltf", "file": "tri.gltf"}], "camera": {"from": 
 PY
 oiiotool --pattern constant:color=0.2,0.4,0.6 4x4 3 -d uint8 -o "$T/inputs/tex.png" ||
   fail "oiiotool could not write the texture"
-IN=(--width 8 --height 8 --spp 1 --reference-spp 4 --integrators nee_mis -q)
+IN=(--width 8 --height 8 --spp 1 --reference-spp 4 --integrators nee_mis)
 source_is() {  # source_is SCENE OUT rendered|cached WHY: compare SCENE into OUT; the reference must be WHY's source
-  expect 0 "$LUMIS" compare "$1" "${IN[@]}" -o "$2"
+  expect 0 "$LUMIS" compare "$1" "${IN[@]}" -q -o "$2"
   grep -q "\"source\": \"$3\"" "$2/report.json" || fail "$4: $(grep -A3 '"reference"' "$2/report.json")"
+}
+rendered_for() {  # rendered_for SCENE OUT REASON: a new reference, and the progress gives REASON for it
+  expect 0 "$LUMIS" compare "$1" "${IN[@]}" -o "$2"
+  grep -q '"source": "rendered"' "$2/report.json" || fail "$1: reference reused ($3)"
+  grep -qF "compare: not reusing the cached reference ($3)" "$T/err" || fail "$1: not '$3': $(cat "$T/err")"
 }
 for scene in inc.json tri.gltf; do
   source_is "$T/inputs/$scene" "$T/in-$scene" rendered "$scene: first run"
@@ -287,18 +298,44 @@ data = bytearray(open(d + "/tri.bin", "rb").read())
 data[0:4] = struct.pack("<f", -0.5)  # the first vertex moves; byteLength is unchanged
 open(d + "/tri.bin.new", "wb").write(data)
 PY
-for scene in inc.json tri.gltf; do
-  source_is "$T/inputs/$scene" "$T/in-$scene" rendered "$scene: reference reused after its texture changed"
-done
+# Each new reference names what changed, in the progress on stderr.
+for scene in inc.json tri.gltf; do rendered_for "$T/inputs/$scene" "$T/in-$scene" "changed: $T/inputs/tex.png"; done
 mv "$T/inputs/tri.bin.new" "$T/inputs/tri.bin"
-for scene in inc.json tri.gltf; do
-  source_is "$T/inputs/$scene" "$T/in-$scene" rendered "$scene: reference reused after its buffer changed"
-done
+for scene in inc.json tri.gltf; do rendered_for "$T/inputs/$scene" "$T/in-$scene" "changed: $T/inputs/tri.bin"; done
 printf ' ' >> "$T/inputs/tri.gltf"  # the included glTF file's own bytes
-source_is "$T/inputs/inc.json" "$T/in-inc.json" rendered "inc.json: reference reused after its glTF file changed"
-# The same bytes in another folder (the project moved) reuse the reference.
+rendered_for "$T/inputs/inc.json" "$T/in-inc.json" "changed: $T/inputs/tri.gltf"
+rendered_for "$T/inputs/tri.gltf" "$T/in-tri.gltf" "the scene file changed"
+# reference.json lists each file the scene reads once, with its hash: here a glTF file included twice.
+python3 - "$T/inputs" <<'PY' || fail "could not write twice.json"
+import json, sys
+d = sys.argv[1]
+json.dump({"shapes": [{"type": "gltf", "file": "tri.gltf"}, {"type": "gltf", "file": "tri.gltf"}],
+           "camera": {"from": [0, 0, 1], "to": [0, 0, -2]}}, open(d + "/twice.json", "w"))
+PY
+source_is "$T/inputs/twice.json" "$T/twice" rendered "twice.json: first run"
+R="$T/twice/reference.json"
+python3 - "$T/inputs" "$R" <<'PY' || fail "reference.json's inputs: $(cat "$R")"
+import json, sys
+d, j = sys.argv[1], json.load(open(sys.argv[2]))
+assert [i["file"] for i in j["inputs"]] == [d + "/tri.gltf", d + "/tri.bin", d + "/tex.png"], j["inputs"]
+assert all(len(i["fnv1a"]) == 16 for i in j["inputs"]) and len(j["scene_fnv1a"]) == 16, j
+PY
+# The same bytes in another folder (the project moved) reuse the reference; with a file changed there, the reason
+# lists the files by their new and old paths, three of them and a count.
 cp -r "$T/inputs" "$T/moved"
 source_is "$T/moved/inc.json" "$T/in-inc.json" cached "inc.json: reference not reused after the project moved"
+printf ' ' >> "$T/moved/tri.gltf"
+rendered_for "$T/moved/inc.json" "$T/in-inc.json" "changed: $T/moved/tri.gltf (new), $T/moved/tri.bin (new), \
+$T/moved/tex.png (new) and 3 more"
+# A reference.json written before lumis recorded the scene's files: the settings are all it can tell apart.
+python3 - "$T/in-inc.json/reference.json" <<'PY' || fail "could not age reference.json"
+import json, sys
+j = json.load(open(sys.argv[1]))
+del j["scene_fnv1a"], j["inputs"]
+j["hash"] = "0123456789abcdef"
+json.dump(j, open(sys.argv[1], "w"))
+PY
+rendered_for "$T/moved/inc.json" "$T/in-inc.json" "cached by an older lumis, which did not record the scene's files"
 
 # A run that fails part way leaves no report of the earlier run beside images it replaced: the report goes first.
 SMALL8=(--width 8 --height 8 --spp 1 --reference-spp 4 --integrators bsdf,nee_mis -q)
