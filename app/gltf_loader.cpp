@@ -72,11 +72,7 @@ GltfScene load_gltf(const std::string& path, const Mat4& transform) {
   if (!transform.is_finite()) ctx.fail("", "the transform given to the loader is not finite");
   parse_file(ctx, path);
   for (const auto& b : ctx.model.buffers)  // a .glb's own buffer has no URI
-    if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0) {
-      const std::string file = resolve_uri(ctx, b.uri);
-      if (std::find(scene.buffer_files.begin(), scene.buffer_files.end(), file) == scene.buffer_files.end())
-        scene.buffer_files.push_back(file);
-    }
+    if (!b.uri.empty() && b.uri.rfind("data:", 0) != 0) scene.buffer_files.push_back(resolve_uri(ctx, b.uri));
   check_extensions(ctx);
   scene.materials = convert_materials(ctx);
   const std::vector<int> parent = check_hierarchy(ctx);

@@ -42,7 +42,7 @@ struct GltfScene {
   Bounds3 bounds;                       ///< of all mesh vertices, world space
   std::vector<std::string> warnings;    ///< things skipped or approximated, one line each
   std::vector<std::string> image_files; ///< the external image files its materials read, resolved, once each
-  std::vector<std::string> buffer_files; ///< the external buffer files it reads (not data: URIs), resolved, once each
+  std::vector<std::string> buffer_files; ///< the external buffer files it reads (not data: URIs), resolved
 };
 
 /// Load the default scene (or scene 0) of a glTF file; `transform` maps glTF world space to lumis world space.
