@@ -132,6 +132,11 @@ int run_bench(const BenchOptions& o) {
       }
       bench_scene(which, o, report.threads, res);
       if (sc.generated) res.path = "(generated) " + res.path;
+    } catch (const BenchRefusal& e) {
+      std::cerr << "lumis: bench: " << e.what() << "\n";
+      std::error_code ec;
+      if (!temp.empty()) fs::remove(temp, ec);
+      return 2;
     } catch (const std::exception& e) {
       res.name = sc.name;
       res.path = which.path;
@@ -149,16 +154,6 @@ int run_bench(const BenchOptions& o) {
 
   print_bench_report(report);
   if (!o.json_out.empty()) {
-    // A scene's own inputs (a texture, a glTF file or buffer) are known only once it has loaded.
-    for (const SceneResult& res : report.scenes)
-      for (const std::string& input : res.inputs) {
-        std::error_code ec;
-        if (fs::equivalent(o.json_out, input, ec)) {
-          std::cerr << "lumis: bench: --json " << o.json_out << " is a file scene " << res.name << " reads ("
-                    << input << "); results not written\n";
-          return 2;
-        }
-      }
     if (const std::string why = write_file_atomically(o.json_out, bench_report_json(report) + "\n"); !why.empty()) {
       std::cerr << "lumis: " << o.json_out << ": " << why << "\n";
       return 1;

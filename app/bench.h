@@ -139,7 +139,6 @@ struct BenchVariantResult {
 struct SceneResult {
   std::string name, path;
   std::string error;                 ///< non-empty: the scene could not be benchmarked
-  std::vector<std::string> inputs;   ///< the files the scene read besides its own (not in the report)
   size_t triangles = 0, lights = 0;
   int width = 0, height = 0;
   uint32_t spp = 0;

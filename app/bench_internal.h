@@ -4,6 +4,7 @@
 #pragma once
 
 #include <chrono>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,13 @@ struct Replays {
   ReplayTiming single, as_called;
 };
 
-/// Everything `lumis bench` measures on one scene, with `threads` threads, into res (throws on a load error).
+/// Stops the whole run rather than one scene: --json names a file a scene reads, known once that scene has loaded.
+struct BenchRefusal : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Everything `lumis bench` measures on one scene, with `threads` threads, into res (throws on a load error, and
+/// BenchRefusal before measuring when --json names a file the scene reads).
 void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, SceneResult& res);
 
 /// One variant's medians over the repetitions; each ratio pairs a render with the raw timing (and the replay) of

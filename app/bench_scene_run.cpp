@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 #include "app/bench_internal.h"
@@ -90,7 +91,13 @@ void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, Sc
   auto t0 = BenchClock::now();
   std::unique_ptr<Scene> scene = load_scene(which.path);
   std::vector<double> loads{seconds_since(t0)};
-  res.inputs = scene->inputs();
+  // Known only now: a texture, glTF file or buffer the scene reads, which the results must not be written over.
+  for (const std::string& input : scene->inputs()) {
+    std::error_code ec;
+    if (!o.json_out.empty() && std::filesystem::equivalent(o.json_out, input, ec))
+      throw BenchRefusal("--json " + o.json_out + " is a file scene " + which.name + " reads (" + input +
+                         "); write the results elsewhere");
+  }
 
   RenderSettings& s = scene->settings;
   // The benchmark's defaults, then the command line's (--width alone keeps them square, as any override does).

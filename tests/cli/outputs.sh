@@ -190,14 +190,15 @@ for pair in "env.json env.exr" "env.json env-link.exr" "tex.json tex.png" "inc.j
 done
 expect 0 "$LUMIS" render "$T/own/tri.gltf" -o "$T/own/other.png" --width 8 --spp 1 -q
 # bench --json naming the scene file is refused before anything is measured; naming a file the scene reads (known
-# once it has loaded) keeps the results from being written over it.
+# once it has loaded) stops the run there, before that scene is measured.
 cp "$T/own/inc.json" "$T/own/inc-before.json" && cp "$T/own/gtex.png" "$T/own/gtex-before.png" ||
   fail "could not copy the scene files"
 quick 2 "$LUMIS" bench "$T/own/inc.json" --quick --json "$T/own/inc.json"
 has "lumis: bench: --json $T/own/inc.json is the scene file $T/own/inc.json; write the results elsewhere"
 [ ! -s "$T/out" ] || fail "bench measured a scene before refusing --json: $(cat "$T/out")"
 quick 2 "$LUMIS" bench "$T/own/inc.json" --quick --json "$T/own/gtex.png"
-has "lumis: bench: --json $T/own/gtex.png is a file scene inc reads ($T/own/gtex.png); results not written"
+has "lumis: bench: --json $T/own/gtex.png is a file scene inc reads ($T/own/gtex.png); write the results elsewhere"
+[ ! -s "$T/out" ] || fail "bench measured a scene before refusing --json naming a file it reads: $(cat "$T/out")"
 cmp -s "$T/own/inc.json" "$T/own/inc-before.json" && cmp -s "$T/own/gtex.png" "$T/own/gtex-before.png" ||
   fail "bench --json wrote over a file the scene reads"
 echo "output and option checks passed"
