@@ -141,12 +141,10 @@ std::string expand_plus_uri(const std::string& path, void* plus_uris);
 
 // --- checks of the JSON text (gltf_json_checks.cpp) ---
 
-/// A node with both "matrix" and translation/rotation/scale in the glTF JSON `text` is an error (tinygltf reads the
-/// matrix and drops the rest silently). The text is parsed again only when it holds "matrix".
-void check_matrix_nodes(const Context& ctx, const std::string& text);
-/// A negative byteOffset, byteLength or byteStride of a buffer, buffer view or accessor is an error naming it
-/// (tinygltf leaves such a field at 0, so the data was read from the wrong place). Parsed only when the text has one.
-void check_unsigned_fields(const Context& ctx, const std::string& text);
+/// The glTF JSON `text`, parsed once more before tinygltf reads it: a field lumis reads that has the wrong type (which
+/// tinygltf would ignore silently, keeping its default), an index beyond int's range, a negative byte offset, length
+/// or stride, or a node with both "matrix" and translation/rotation/scale is an error naming its glTF path.
+void check_json(const Context& ctx, const std::string& text);
 
 /// A node's transform in its parent's space: `matrix`, or translation x rotation x scale (rotation normalised).
 Mat4 local_transform(const Context& ctx, const tinygltf::Node& node, const std::string& at);

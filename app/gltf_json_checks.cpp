@@ -1,62 +1,174 @@
-// Checks of a glTF file's JSON text for what tinygltf 2.7 lets through silently: a node with both a matrix and
-// translation/rotation/scale (it keeps the matrix), and a negative byte offset, length or stride (it leaves the field
-// at 0). Each scans the text first and parses it again only when the text could hold the fault.
-#include <cctype>
+// Checks of a glTF file's JSON text for what tinygltf 2.7 lets through silently. It ignores an optional field of the
+// wrong type ("mesh": "0", "mode": "1", "metallicFactor": "0", an index written 1.0) and keeps its default, stops an
+// array at its first wrong element ("children": [1, "2"] keeps 1), truncates an index beyond int's range, reads a
+// negative byte offset as 0, and keeps a node's matrix when translation/rotation/scale are there too. Each such field
+// is an error naming its glTF path here.
+#include <climits>
+#include <cmath>
 #include <string>
-#include <string_view>
-
-#include <nlohmann/json.hpp>
+#include <vector>
 
 #include "app/gltf_internal.h"
+#include "app/json_reader.h"
 
 namespace lumis::gltf {
 
-void check_matrix_nodes(const Context& ctx, const std::string& text) {
-  if (text.find("\"matrix\"") == std::string::npos) return;  // the common case, without a second parse
-  const auto doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (!doc.is_object()) return;  // tinygltf reports it
-  const auto nodes = doc.find("nodes");
-  if (nodes == doc.end() || !nodes->is_array()) return;
-  for (size_t i = 0; i < nodes->size(); ++i) {
-    const auto& n = (*nodes)[i];
-    if (n.is_object() && n.contains("matrix") &&
-        (n.contains("translation") || n.contains("rotation") || n.contains("scale")))
-      ctx.fail(indexed("nodes", i), "has both \"matrix\" and translation/rotation/scale; glTF allows one or the "
-                                    "other (lumis's reader would use the matrix alone)");
+namespace {
+
+/// What a field holds; the arrays and maps hold Index, Number or String elements.
+enum class Want { Index, Count, Int, Number, Positive, Bool, String, Numbers, Indices, Strings, IndexMap, Object,
+                  Objects };
+
+struct Field {
+  const char* name;
+  Want want;
+  const std::vector<Field>* inner = nullptr;  ///< Object, Objects: the fields checked in the object(s)
+};
+using Fields = std::vector<Field>;
+
+// The fields lumis reads, as glTF 2.0's schema types them (zfar, minFilter, occlusion, skins, animations: not read).
+const Fields kTextureInfo = {{"index", Want::Index}, {"texCoord", Want::Index}};
+const Fields kNormalTextureInfo = {{"index", Want::Index}, {"texCoord", Want::Index}, {"scale", Want::Number}};
+const Fields kPbr = {{"baseColorFactor", Want::Numbers},          {"metallicFactor", Want::Number},
+                     {"roughnessFactor", Want::Number},           {"baseColorTexture", Want::Object, &kTextureInfo},
+                     {"metallicRoughnessTexture", Want::Object, &kTextureInfo}};
+const Fields kMaterial = {{"name", Want::String},          {"pbrMetallicRoughness", Want::Object, &kPbr},
+                          {"normalTexture", Want::Object, &kNormalTextureInfo},
+                          {"emissiveTexture", Want::Object, &kTextureInfo},
+                          {"emissiveFactor", Want::Numbers}, {"alphaMode", Want::String},
+                          {"alphaCutoff", Want::Number},     {"doubleSided", Want::Bool}};
+const Fields kPrimitive = {{"attributes", Want::IndexMap}, {"indices", Want::Index}, {"material", Want::Index},
+                           {"mode", Want::Int}};
+const Fields kMesh = {{"primitives", Want::Objects, &kPrimitive}};
+const Fields kNode = {{"name", Want::String},       {"camera", Want::Index},      {"mesh", Want::Index},
+                      {"children", Want::Indices}, {"matrix", Want::Numbers},    {"translation", Want::Numbers},
+                      {"rotation", Want::Numbers}, {"scale", Want::Numbers}};
+const Fields kScene = {{"nodes", Want::Indices}};
+const Fields kSparsePart = {{"bufferView", Want::Index}, {"byteOffset", Want::Count}, {"componentType", Want::Int}};
+const Fields kSparse = {{"count", Want::Count}, {"indices", Want::Object, &kSparsePart},
+                        {"values", Want::Object, &kSparsePart}};
+const Fields kAccessor = {{"bufferView", Want::Index}, {"byteOffset", Want::Count}, {"componentType", Want::Int},
+                          {"normalized", Want::Bool},  {"count", Want::Count},      {"type", Want::String},
+                          {"sparse", Want::Object, &kSparse}};
+const Fields kBufferView = {{"buffer", Want::Index}, {"byteOffset", Want::Count}, {"byteLength", Want::Count},
+                            {"byteStride", Want::Count}};
+const Fields kBuffer = {{"uri", Want::String}, {"byteLength", Want::Count}};
+const Fields kImage = {{"uri", Want::String}, {"mimeType", Want::String}, {"bufferView", Want::Index}};
+const Fields kTexture = {{"sampler", Want::Index}, {"source", Want::Index}};
+const Fields kSampler = {{"magFilter", Want::Int}, {"wrapS", Want::Int}, {"wrapT", Want::Int}};
+const Fields kPerspective = {{"aspectRatio", Want::Positive}, {"yfov", Want::Number}, {"znear", Want::Number}};
+const Fields kCamera = {{"name", Want::String}, {"type", Want::String}, {"perspective", Want::Object, &kPerspective}};
+const Fields kRoot = {{"scene", Want::Index},
+                      {"scenes", Want::Objects, &kScene},
+                      {"nodes", Want::Objects, &kNode},
+                      {"meshes", Want::Objects, &kMesh},
+                      {"materials", Want::Objects, &kMaterial},
+                      {"accessors", Want::Objects, &kAccessor},
+                      {"bufferViews", Want::Objects, &kBufferView},
+                      {"buffers", Want::Objects, &kBuffer},
+                      {"images", Want::Objects, &kImage},
+                      {"textures", Want::Objects, &kTexture},
+                      {"samplers", Want::Objects, &kSampler},
+                      {"cameras", Want::Objects, &kCamera},
+                      {"extensionsUsed", Want::Strings},
+                      {"extensionsRequired", Want::Strings}};
+
+const char* expectation(Want want) {
+  switch (want) {
+    case Want::Index: return "an index (a whole number >= 0)";
+    case Want::Count: return "a whole number >= 0";
+    case Want::Int: return "a whole number";
+    case Want::Number: return "a number";
+    case Want::Positive: return "a number > 0";
+    case Want::Bool: return "true or false";
+    case Want::String: return "a string";
+    case Want::Numbers: return "an array of numbers";
+    case Want::Indices: return "an array of indices";
+    case Want::Strings: return "an array of strings";
+    case Want::IndexMap: return "an object of indices";
+    case Want::Object: return "an object";
+    case Want::Objects: return "an array of objects";
+  }
+  return "";
+}
+
+/// Whether a scalar value is what `want` asks for, as tinygltf would read it (its indices are ints).
+bool holds(const Json& v, Want want) {
+  switch (want) {
+    case Want::Index: return v.is_number_unsigned() && v.get<uint64_t>() <= uint64_t(INT_MAX);
+    case Want::Count: return v.is_number_unsigned();
+    case Want::Int:
+      return v.is_number_unsigned() ? v.get<uint64_t>() <= uint64_t(INT_MAX)
+                                    : v.is_number_integer() && v.get<int64_t>() >= INT_MIN;
+    case Want::Number: return v.is_number();
+    case Want::Positive: return v.is_number() && v.get<double>() > 0;
+    case Want::Bool: return v.is_boolean();
+    case Want::String: return v.is_string();
+    default: return false;
   }
 }
 
-namespace {
+[[noreturn]] void refuse(const Context& ctx, const Json& v, Want want, const std::string& at) {
+  std::string what = std::string("expected ") + expectation(want);
+  const bool whole = want == Want::Index || want == Want::Count || want == Want::Int;
+  if (whole && v.is_number_float() && std::floor(v.get<double>()) == v.get<double>())
+    ctx.fail(at, what + " written without a decimal point or exponent, found " + v.dump());
+  if (v.is_number_integer() && (want == Want::Int || (want == Want::Index && v.is_number_unsigned())))
+    what += want == Want::Int ? " in int's range" : " no greater than 2147483647";  // tinygltf would truncate it
+  ctx.fail(at, what + ", found " + describe_json(v));
+}
 
-/// Whether some `"key": -...` occurs in the text (the key inside a string value would match too; the parse decides).
-bool negative_after(std::string_view text, std::string_view key) {
-  for (size_t at = text.find(key); at != std::string_view::npos; at = text.find(key, at + 1)) {
-    size_t k = at + key.size();
-    while (k < text.size() && (std::isspace(static_cast<unsigned char>(text[k])) || text[k] == ':')) ++k;
-    if (k < text.size() && text[k] == '-') return true;
+void check_fields(const Context& ctx, const Json& object, const Fields& fields, const std::string& at);
+
+void check_value(const Context& ctx, const Json& v, const Field& f, const std::string& at) {
+  const auto each = [&](Want element) {
+    if (!(f.want == Want::IndexMap ? v.is_object() : v.is_array())) refuse(ctx, v, f.want, at);
+    size_t i = 0;
+    for (auto it = v.begin(); it != v.end(); ++it, ++i)
+      if (!holds(*it, element)) refuse(ctx, *it, element, v.is_object() ? at + "." + it.key() : indexed(at, i));
+  };
+  switch (f.want) {
+    case Want::Numbers: return each(Want::Number);
+    case Want::Indices: return each(Want::Index);
+    case Want::Strings: return each(Want::String);
+    case Want::IndexMap: return each(Want::Index);
+    case Want::Object:
+      if (!v.is_object()) refuse(ctx, v, f.want, at);
+      return check_fields(ctx, v, *f.inner, at);
+    case Want::Objects:
+      if (!v.is_array()) refuse(ctx, v, f.want, at);
+      for (size_t i = 0; i < v.size(); ++i) {
+        if (!v[i].is_object()) refuse(ctx, v[i], Want::Object, indexed(at, i));
+        check_fields(ctx, v[i], *f.inner, indexed(at, i));
+      }
+      return;
+    default:
+      if (!holds(v, f.want)) refuse(ctx, v, f.want, at);
   }
-  return false;
+}
+
+void check_fields(const Context& ctx, const Json& object, const Fields& fields, const std::string& at) {
+  for (const Field& f : fields)
+    if (const auto it = object.find(f.name); it != object.end())
+      check_value(ctx, *it, f, at.empty() ? f.name : at + "." + f.name);
 }
 
 }  // namespace
 
-void check_unsigned_fields(const Context& ctx, const std::string& text) {
-  static const char* kFields[] = {"byteOffset", "byteLength", "byteStride"};
-  static const char* kQuoted[] = {"\"byteOffset\"", "\"byteLength\"", "\"byteStride\""};
-  bool suspect = false;
-  for (const char* q : kQuoted) suspect = suspect || negative_after(text, q);
-  if (!suspect) return;
-  const auto doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+void check_json(const Context& ctx, const std::string& text) {
+  const Json doc = Json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (!doc.is_object()) return;  // tinygltf reports it
-  for (const char* list : {"buffers", "bufferViews", "accessors"}) {
-    const auto items = doc.find(list);
-    if (items == doc.end() || !items->is_array()) continue;
-    for (size_t i = 0; i < items->size(); ++i)
-      for (const char* f : kFields) {
-        const auto& item = (*items)[i];
-        if (!item.is_object() || !item.contains(f) || !item[f].is_number() || item[f].get<double>() >= 0) continue;
-        ctx.fail(indexed(list, i) + "." + f, "expected a whole number >= 0, found " + item[f].dump());
-      }
+  // glTF 1.0's fields differ ("scene": "name"): its version is what to report, once tinygltf has read the file.
+  if (const auto asset = doc.find("asset"); asset != doc.end() && asset->is_object())
+    if (const auto v = asset->find("version"); v != asset->end() && v->is_string())
+      if (v->get<std::string>().rfind("2.", 0) != 0) return;
+  check_fields(ctx, doc, kRoot, "");
+  const auto nodes = doc.find("nodes");  // an array of objects, if there, once check_fields has passed
+  for (size_t i = 0; nodes != doc.end() && i < nodes->size(); ++i) {
+    const Json& n = (*nodes)[i];
+    if (n.contains("matrix") && (n.contains("translation") || n.contains("rotation") || n.contains("scale")))
+      ctx.fail(indexed("nodes", i), "has both \"matrix\" and translation/rotation/scale; glTF allows one or the "
+                                    "other (lumis's reader would use the matrix alone)");
   }
 }
 

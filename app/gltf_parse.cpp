@@ -100,8 +100,7 @@ void parse_file(Context& ctx, const std::string& path) {
   const bool binary = std::string(magic, 4) == "glTF";
   const std::optional<std::string> text = json_text(path, binary);
   if (text) check_depth(ctx, *text, binary);
-  if (text) check_matrix_nodes(ctx, *text);
-  if (text) check_unsigned_fields(ctx, *text);
+  if (text) check_json(ctx, *text);
   PlusUris plus = text ? plus_uris(ctx, *text) : PlusUris{};
 
   tinygltf::TinyGLTF loader;
