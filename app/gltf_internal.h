@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app/gltf_loader.h"
+#include "app/json_reader.h"
 #include "app/scene_error.h"
 #include "core/image.h"
 #include "core/transform.h"
@@ -130,9 +131,9 @@ struct PlusUris {
   std::map<std::string, std::string> plus;
 };
 
-/// The buffers' and images' URIs in the glTF JSON `text` that hold a '+' (no parse without a '+' in the text). Two
-/// URIs that tinygltf reads alike but that name different files ("a+b.bin", "a%20b.bin") are an error.
-PlusUris plus_uris(const Context& ctx, const std::string& text);
+/// The buffers' and images' URIs in the glTF JSON `doc` that hold a '+'. Two URIs that tinygltf reads alike but that
+/// name different files ("a+b.bin", "a%20b.bin") are an error.
+PlusUris plus_uris(const Context& ctx, const Json& doc);
 
 /// FsCallbacks::ExpandFilePath (user data: a PlusUris): `path` with a file name tinygltf misread put right.
 std::string expand_plus_uri(const std::string& path, void* plus_uris);
@@ -141,10 +142,11 @@ std::string expand_plus_uri(const std::string& path, void* plus_uris);
 
 // --- checks of the JSON text (gltf_json_checks.cpp) ---
 
-/// The glTF JSON `text`, parsed once more before tinygltf reads it: a field lumis reads that has the wrong type (which
-/// tinygltf would ignore silently, keeping its default), an index beyond int's range, a negative byte offset, length
-/// or stride, or a node with both "matrix" and translation/rotation/scale is an error naming its glTF path.
-void check_json(const Context& ctx, const std::string& text);
+/// The glTF JSON `doc` (the file's text parsed before tinygltf reads it; not an object: nothing checked, tinygltf
+/// reports it): a field lumis reads that has the wrong type (which tinygltf would ignore silently, keeping its
+/// default), an index beyond int's range, a negative byte offset, length or stride, or a node with both "matrix" and
+/// translation/rotation/scale is an error naming its glTF path.
+void check_json(const Context& ctx, const Json& doc);
 
 /// A node's transform in its parent's space: `matrix`, or translation x rotation x scale (rotation normalised).
 Mat4 local_transform(const Context& ctx, const tinygltf::Node& node, const std::string& at);

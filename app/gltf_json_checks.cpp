@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "app/gltf_internal.h"
-#include "app/json_reader.h"
 
 namespace lumis::gltf {
 
@@ -155,8 +154,7 @@ void check_fields(const Context& ctx, const Json& object, const Fields& fields, 
 
 }  // namespace
 
-void check_json(const Context& ctx, const std::string& text) {
-  const Json doc = Json::parse(text, nullptr, /*allow_exceptions=*/false);
+void check_json(const Context& ctx, const Json& doc) {
   if (!doc.is_object()) return;  // tinygltf reports it
   // glTF 1.0's fields differ ("scene": "name"): its version is what to report, once tinygltf has read the file.
   if (const auto asset = doc.find("asset"); asset != doc.end() && asset->is_object())

@@ -100,8 +100,12 @@ void parse_file(Context& ctx, const std::string& path) {
   const bool binary = std::string(magic, 4) == "glTF";
   const std::optional<std::string> text = json_text(path, binary);
   if (text) check_depth(ctx, *text, binary);
-  if (text) check_json(ctx, *text);
-  PlusUris plus = text ? plus_uris(ctx, *text) : PlusUris{};
+  PlusUris plus;
+  {  // one parse for lumis's own checks and the '+' URIs, freed before tinygltf parses the text into its model
+    const Json doc = text ? Json::parse(*text, nullptr, /*allow_exceptions=*/false) : Json();
+    check_json(ctx, doc);
+    plus = plus_uris(ctx, doc);
+  }
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&keep_image_bytes, nullptr);

@@ -9,7 +9,6 @@
 #include <string_view>
 #include <utility>
 
-#include <nlohmann/json.hpp>
 
 #include "app/gltf_internal.h"
 
@@ -99,10 +98,8 @@ void check_buffer_uri(const Context& ctx, size_t i, const std::string& uri, uint
                                      std::to_string(size) + " bytes");
 }
 
-PlusUris plus_uris(const Context& ctx, const std::string& text) {
+PlusUris plus_uris(const Context& ctx, const Json& doc) {
   PlusUris uris;
-  if (text.find('+') == std::string::npos) return uris;
-  const auto doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (!doc.is_object()) return uris;
   std::map<std::string, std::pair<std::string, std::string>> seen;  // misread -> (meant, "glTF path 'URI'")
   for (const char* key : {"buffers", "images"}) {
