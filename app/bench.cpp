@@ -65,6 +65,15 @@ std::vector<BenchScene> default_scenes(const BenchOptions& o) {
 }  // namespace
 
 int run_bench(const BenchOptions& o) {
+  // Two of the shared render options cannot take effect: a benchmark measures a fixed number of samples, and it
+  // writes no image. Taken silently, they would make a run look as if it measured what was asked.
+  if (o.overrides.time || o.overrides.exposure) {
+    std::cerr << "lumis: bench: " << (o.overrides.time ? "--time" : "--exposure") << " does not apply: "
+              << (o.overrides.time ? "bench renders a fixed number of samples per pixel (--spp, default 4)"
+                                   : "bench writes no image")
+              << "\n";
+    return 2;
+  }
   try {  // reject bad override names before any work
     RenderSettings probe;
     apply_overrides(o.overrides, probe);

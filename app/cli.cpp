@@ -246,6 +246,10 @@ void register_bench_command(CLI::App& app, int& exit_code) {
           },
           "FILE.glb"));
   add_render_overrides(*cmd, o.overrides);
+  // Registered only to be refused by name (run_bench): bench renders a fixed spp and writes no image.
+  cmd->get_option("--time")->group("");
+  cmd->get_option("--exposure")->group("");
+  cmd->get_option("--spp")->description("Samples per pixel of every render (default 4; 1 with --quick)");
   cmd->callback([a, repeat, &exit_code] {
     if (a->options.quick && repeat->count() == 0) a->options.repeat = 1;
     exit_code = run_bench_command(*a);

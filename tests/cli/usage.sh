@@ -3,7 +3,7 @@
 # named with the list of commands, a whole-number option given a fraction or an exponent says it wants a whole
 # number (CLI11 once said "not in range"), a range is given as the option states it (CLI11 once printed the largest
 # double, 309 digits, as the upper bound). An option that cannot take effect is named in a warning: --exposure with
-# an .exr or .hdr output. Usage: usage.sh path/to/lumis   (exit 77 = skipped)
+# an .exr or .hdr output; bench refuses --time and --exposure. Usage: usage.sh path/to/lumis   (exit 77 = skipped)
 set -uo pipefail
 LUMIS=${1:?usage: usage.sh path/to/lumis}
 source "$(dirname "$0")/common.bash"
@@ -59,4 +59,15 @@ expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1 -q --exposure 3 -
 lacks "warning"
 expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1 -q -o "$T/e2.exr"
 lacks "warning"
+
+# bench renders a fixed number of samples and writes no image, so --time and --exposure cannot take effect there:
+# they are refused by name before anything is measured (they were once accepted and ignored), and bench's help does
+# not list them.
+for opt in --time --exposure; do
+  expect 2 "$LUMIS" bench --quick --json "$T/b.json" "$opt" 1
+  has "lumis: bench: $opt does not apply: "
+  [ ! -s "$T/out" ] || fail "bench $opt measured before refusing: $(cat "$T/out")"
+  [ ! -e "$T/b.json" ] || fail "bench $opt wrote its JSON"
+  "$LUMIS" bench --help | grep -q -- "$opt " && fail "bench --help lists $opt"
+done
 echo "usage.sh: all checks passed"
