@@ -112,7 +112,7 @@ void register_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box, scenes/cornell-sphere.json)")
       ->check(kNonEmpty);
   cmd->add_option("-o,--output", args->output,
-                  "Output image: .exr (linear, with variance channels), .png/.jpg (sRGB), .hdr "
+                  "Output image: .exr (linear, with variance channels), .png/.jpg/.jpeg (sRGB), .hdr, in any case "
                   "(default: <scene name>.png)")
       ->check(kNonEmpty);
   add_render_overrides(*cmd, args->overrides);
@@ -170,7 +170,7 @@ void register_diff_command(CLI::App& app, int& exit_code) {
       ->check(kFiniteNumber)
       ->check(number_in(0, std::numeric_limits<double>::max(), "a number >= 0"))
       ->capture_default_str();
-  cmd->add_option("--psnr-peak", args->psnr_peak, "PSNR peak: a number, or 'max' for the reference's largest value")
+  cmd->add_option("--psnr-peak", args->psnr_peak, "PSNR peak: a positive number, or 'max' for the reference's largest value")
       ->capture_default_str();
   cmd->add_option("--heatmap", args->heatmap, "Write a false-colour picture of the per-pixel error (PNG/EXR)")
       ->check(kNonEmpty);
