@@ -250,7 +250,20 @@ void register_bench_command(CLI::App& app, int& exit_code) {
   cmd->get_option("--time")->group("");
   cmd->get_option("--exposure")->group("");
   cmd->get_option("--spp")->description("Samples per pixel of every render (default 4; 1 with --quick)");
-  cmd->callback([a, repeat, &exit_code] {
+  cmd->callback([a, cmd, repeat, &exit_code] {
+    // --write-large-scene writes the room and exits: any other option but the room's size would go unused.
+    if (!a->write_large.empty()) {
+      for (const CLI::Option* opt : cmd->get_options()) {
+        // (get_name() is empty for the options hidden above.)
+        const std::string name = opt->get_lnames().empty() ? "a scene" : "--" + opt->get_lnames().front();
+        if (opt->count() && name != "--write-large-scene" && name != "--large-triangles") {
+          std::cerr << "lumis: bench: --write-large-scene only writes the generated room and exits (with "
+                    << "--large-triangles); " << name << " does not apply\n";
+          exit_code = 2;
+          return;
+        }
+      }
+    }
     if (a->options.quick && repeat->count() == 0) a->options.repeat = 1;
     exit_code = run_bench_command(*a);
   });

@@ -3,8 +3,8 @@
 # 1 spp), the JSON report parses and has every field, the rays split by kind add up, the ratios to the raw rates
 # and the time the target leaves lumis follow from the report's own rates, counts and times, the replay of each
 # render's own rays holds all of them, --write-large-scene writes a glTF that `lumis render` loads, and its usage
-# errors (a name other than .glb, an --assets folder that does not exist) exit 2. Speeds are not checked (shared
-# machines). Usage: bench.sh path/to/lumis
+# errors (a name other than .glb, any other option beside it, an --assets folder that does not exist) exit 2.
+# Speeds are not checked (shared machines). Usage: bench.sh path/to/lumis
 set -uo pipefail
 LUMIS=${1:?usage: bench.sh path/to/lumis}
 source "$(dirname "$0")/common.bash"
@@ -94,6 +94,16 @@ grep -q "expected a .glb file name" "$T/err" || fail "--write-large-scene messag
 [ ! -e "$T/room.gltf" ] || fail "--write-large-scene wrote a .gltf"
 "$LUMIS" bench --write-large-scene "$T/ROOM.GLB" --large-triangles 200 2>"$T/err" ||
   fail ".GLB refused: $(cat "$T/err")"
+# --write-large-scene writes the room and exits: any other option (a scene, a render override, --json, even the
+# hidden --time) is refused by name rather than ignored, and nothing is written.
+for extra in "--spp 4" "@large" "--json $T/wl.json" "--time 1"; do
+  "$LUMIS" bench --write-large-scene "$T/wl.glb" $extra >"$T/out" 2>"$T/err"
+  [ $? = 2 ] || fail "--write-large-scene with $extra should exit 2"
+  name=${extra% *}; [ "$name" = @large ] && name="a scene"
+  grep -qF "only writes the generated room and exits (with --large-triangles); $name does not apply" "$T/err" ||
+    fail "--write-large-scene with $extra: $(cat "$T/err")"
+  [ ! -e "$T/wl.glb" ] && [ ! -e "$T/wl.json" ] || fail "--write-large-scene with $extra wrote a file"
+done
 "$LUMIS" bench --quick --assets "$T/no-such-folder" >"$T/out" 2>"$T/err"
 [ $? = 2 ] || fail "--assets on a missing folder should exit 2"
 grep -q "no-such-folder" "$T/err" || fail "--assets message: $(cat "$T/err")"
