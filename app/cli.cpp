@@ -160,9 +160,9 @@ void register_diff_command(CLI::App& app, int& exit_code) {
               "1 fail, 2 error)");
   cmd->add_option("A", args->a, "Test image")->required()->check(kNonEmpty);
   cmd->add_option("B", args->b, "Reference image")->required()->check(kNonEmpty);
-  cmd->add_option("--metric", args->metric, "Metric that --threshold applies to")
-      ->check(CLI::IsMember(metric_names()))
-      ->capture_default_str();
+  CLI::Option* metric = cmd->add_option("--metric", args->metric, "Metric that --threshold applies to")
+                            ->check(CLI::IsMember(metric_names()))
+                            ->capture_default_str();
   cmd->add_option("--threshold", args->threshold,
                   "Fail (exit 1) when the metric exceeds this value (psnr: when it is below)")
       ->check(kFiniteNumber);
@@ -177,11 +177,15 @@ void register_diff_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", args->json, "Print the metrics as JSON on stdout");
   cmd->add_flag("--z-test", args->z_test,
                 "Per-pixel z-test against B's variance channels (plus A's when present); fail on any rejection");
-  cmd->add_option("--alpha", args->alpha, "Family-wise significance level of the z-test")
-      ->check(kFiniteNumber)
-      ->check(number_in(1e-12, 0.5, "a significance level in [1e-12, 0.5]"))
-      ->capture_default_str();
-  cmd->callback([args, &exit_code] { exit_code = run_diff(*args); });
+  CLI::Option* alpha = cmd->add_option("--alpha", args->alpha, "Family-wise significance level of the z-test")
+                           ->check(kFiniteNumber)
+                           ->check(number_in(1e-12, 0.5, "a significance level in [1e-12, 0.5]"))
+                           ->capture_default_str();
+  cmd->callback([args, metric, alpha, &exit_code] {
+    args->metric_given = metric->count() > 0;
+    args->alpha_given = alpha->count() > 0;
+    exit_code = run_diff(*args);
+  });
 }
 
 void register_compare_command(CLI::App& app, int& exit_code) {

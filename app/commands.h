@@ -46,6 +46,7 @@ struct DiffArgs {
   bool json = false;
   bool z_test = false;
   double alpha = 0.01;
+  bool metric_given = false, alpha_given = false;  ///< on the command line (a warning when nothing uses them)
 };
 int run_diff(const DiffArgs& args);
 

@@ -42,6 +42,12 @@ nlohmann::json z_json(const ZTestResult& z, double alpha) {
 }  // namespace
 
 int run_diff(const DiffArgs& args) {
+  // Options that only qualify another one: named when that one is absent, as they then change nothing.
+  if (args.metric_given && !args.threshold)
+    std::cerr << "lumis diff: warning: --metric chooses what --threshold tests; ignored without --threshold (every "
+                 "metric is printed)\n";
+  if (args.alpha_given && !args.z_test)
+    std::cerr << "lumis diff: warning: --alpha is the z-test's significance level; ignored without --z-test\n";
   DiffOptions opt;
   opt.name_a = args.a;
   opt.name_b = args.b;

@@ -23,6 +23,16 @@ expect 1 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --threshold 0
 expect 0 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --threshold 1e9
 expect 0 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --metric psnr --threshold -1e9
 expect 1 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --metric over --tolerance 0 --threshold 0
+# --metric without --threshold and --alpha without --z-test change nothing: each is named in a warning (the exit
+# status is that of the comparison), and with the option it qualifies there is no warning.
+expect 0 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --metric psnr
+grep -qF -- "lumis diff: warning: --metric chooses what --threshold tests; ignored without --threshold" "$T/err" ||
+  fail "--metric alone: $(cat "$T/err")"
+expect 0 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --alpha 0.05
+grep -qF -- "lumis diff: warning: --alpha is the z-test's significance level; ignored without --z-test" "$T/err" ||
+  fail "--alpha alone: $(cat "$T/err")"
+expect 0 "$LUMIS" diff "$T/a.exr" "$T/a.exr" --metric psnr --threshold -1e9 --z-test --alpha 0.05
+! grep -q "warning" "$T/err" || fail "warning with --threshold and --z-test given: $(cat "$T/err")"
 
 # JSON on stdout with every metric, and the heatmap file.
 expect 0 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --json --heatmap "$T/heat.png"
