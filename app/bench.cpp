@@ -81,6 +81,14 @@ int run_bench(const BenchOptions& o) {
     std::cerr << "lumis: " << e.what() << "\n";
     return 2;
   }
+  // Options that only shape the default scene list or the generated room: named when they cannot take effect.
+  const bool large_listed = o.scenes.empty() || std::count(o.scenes.begin(), o.scenes.end(), kLargeSceneToken) > 0;
+  if (!o.assets_dir.empty() && (!o.scenes.empty() || o.quick))
+    std::cerr << "lumis bench: warning: --assets only adds the shared glTF models to the default scene list; ignored "
+              << (o.scenes.empty() ? "with --quick" : "when scenes are named") << "\n";
+  if (o.large_triangles && !large_listed)
+    std::cerr << "lumis bench: warning: --large-triangles only sizes the generated room; ignored, as the scenes named "
+                 "do not include " << kLargeSceneToken << "\n";
   BenchReport report;
   report.cpu = cpu_model();
   report.cores = int(std::thread::hardware_concurrency());
@@ -126,7 +134,7 @@ int run_bench(const BenchOptions& o) {
     fs::path temp;
     try {
       if (sc.generated) {
-        const size_t tris = o.quick ? std::min<size_t>(o.large_triangles, 20000) : o.large_triangles;
+        const size_t tris = o.large_triangles ? o.large_triangles : o.quick ? 20'000 : 1'000'000;
         temp = fs::temp_directory_path() / ("lumis-bench-large-" + std::to_string(getpid()) + ".glb");
         std::fprintf(stderr, "lumis bench: writing the large scene (%zu triangles) to %s\n", tris,
                      temp.string().c_str());

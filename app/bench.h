@@ -22,7 +22,7 @@ struct BenchOptions {
   bool quick = false;               ///< tiny settings for the smoke test
   std::string json_out;             ///< write the results as JSON here when set
   std::string assets_dir;           ///< the shared assets folder (with gltf/); empty: next to the sources
-  size_t large_triangles = 1'000'000;
+  size_t large_triangles = 0;       ///< triangles in the generated scene (at least); 0: 1,000,000 (quick: 20,000)
   size_t raw_rays = 0;              ///< rays per kind for the raw Embree measurement; 0: 2^19 (quick: 2^12)
 };
 

@@ -170,7 +170,8 @@ void register_diff_command(CLI::App& app, int& exit_code) {
       ->check(kFiniteNumber)
       ->check(number_in(0, std::numeric_limits<double>::max(), "a number >= 0"))
       ->capture_default_str();
-  cmd->add_option("--psnr-peak", args->psnr_peak, "PSNR peak: a positive number, or 'max' for the reference's largest value")
+  cmd->add_option("--psnr-peak", args->psnr_peak,
+                  "PSNR peak: a positive number, or 'max' for the reference's largest value")
       ->capture_default_str();
   cmd->add_option("--heatmap", args->heatmap, "Write a false-colour picture of the per-pixel error (PNG/EXR)")
       ->check(kNonEmpty);
@@ -237,7 +238,8 @@ void register_bench_command(CLI::App& app, int& exit_code) {
                 "default scenes only @large and cornell-sphere): a smoke test, not a measurement");
   cmd->add_option("--assets", o.assets_dir, "Shared assets folder with gltf/ (default: <source>/../shared/assets)")
       ->check(CLI::ExistingDirectory);
-  cmd->add_option("--large-triangles", o.large_triangles, "Triangles in the generated scene (at least)")
+  cmd->add_option("--large-triangles", o.large_triangles,
+                  "Triangles in the generated scene, at least (default 1000000; 20000 with --quick)")
       ->transform(whole_in(100, 100'000'000));
   cmd->add_option("--raw-rays", o.raw_rays, "Rays per kind for the raw Embree measurement (default 524288)")
       ->transform(whole_in(16, 1 << 26));

@@ -104,6 +104,22 @@ for extra in "--spp 4" "@large" "--json $T/wl.json" "--time 1"; do
     fail "--write-large-scene with $extra: $(cat "$T/err")"
   [ ! -e "$T/wl.glb" ] && [ ! -e "$T/wl.json" ] || fail "--write-large-scene with $extra wrote a file"
 done
+# --large-triangles with --quick sizes the room: --quick's 20,000 is a default, as its one repetition is.
+"$LUMIS" bench @large --quick --large-triangles 500 --integrator nee_mis --threads 2 --json "$T/small.json" \
+  >"$T/out" 2>"$T/err" || fail "bench @large --large-triangles 500: $(cat "$T/err")"
+! grep -q "warning" "$T/err" || fail "warning for --large-triangles with @large: $(cat "$T/err")"
+python3 -c 'import json, sys; t = json.load(open(sys.argv[1]))["scenes"][0]["triangles"]; assert 500 <= t < 20000, t' \
+  "$T/small.json" || fail "--quick --large-triangles 500 did not size the room"
+# --assets and --large-triangles where they cannot take effect are named in warnings; the run goes on.
+"$LUMIS" bench "$SCENE" --quick --integrator nee_mis --assets "$T" --large-triangles 500 >"$T/out" 2>"$T/err" ||
+  fail "bench with --assets and scenes named: $(cat "$T/err")"
+ASSETS_WARNING="warning: --assets only adds the shared glTF models to the default scene list; ignored"
+grep -qF -- "$ASSETS_WARNING when scenes are named" "$T/err" || fail "--assets with scenes named: $(cat "$T/err")"
+grep -qF -- "warning: --large-triangles only sizes the generated room; ignored, as the scenes named do not include \
+@large" "$T/err" || fail "--large-triangles without @large: $(cat "$T/err")"
+"$LUMIS" bench --quick --integrator nee_mis --assets "$T" >"$T/out" 2>"$T/err" ||
+  fail "--quick --assets: $(cat "$T/err")"
+grep -qF -- "$ASSETS_WARNING with --quick" "$T/err" || fail "--assets with --quick: $(cat "$T/err")"
 "$LUMIS" bench --quick --assets "$T/no-such-folder" >"$T/out" 2>"$T/err"
 [ $? = 2 ] || fail "--assets on a missing folder should exit 2"
 grep -q "no-such-folder" "$T/err" || fail "--assets message: $(cat "$T/err")"
