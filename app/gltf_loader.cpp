@@ -21,10 +21,22 @@ void check_extensions(Context& ctx) {
                                                    "EXT_mesh_gpu_instancing"};
   for (const auto& e : ctx.model.extensionsRequired)
     if (!supported.count(e)) ctx.fail("extensionsRequired", "required extension " + e + " is not supported");
+  // Lamps (KHR_lights_punctual, as Blender exports them) get a warning of their own: a dark or sky-lit render would
+  // otherwise leave a user wondering where they went. The name list is enough for other extensions.
+  const auto& lamps = ctx.model.lights;
   std::string ignored;
   for (const auto& e : ctx.model.extensionsUsed)
-    if (!supported.count(e)) ignored += (ignored.empty() ? "" : ", ") + e;
+    if (!supported.count(e) && !(e == "KHR_lights_punctual" && !lamps.empty()))
+      ignored += (ignored.empty() ? "" : ", ") + e;
   if (!ignored.empty()) ctx.warn("ignored glTF extensions: " + ignored);
+  if (lamps.empty()) return;
+  std::map<std::string, int> kinds;  // "point", "spot", "directional"
+  for (const auto& l : lamps) ++kinds[l.type.empty() ? "untyped" : l.type];
+  std::string counts;
+  for (const auto& [type, n] : kinds) counts += (counts.empty() ? "" : ", ") + std::to_string(n) + " " + type;
+  ctx.warn("KHR_lights_punctual: not rendering the file's " + std::to_string(lamps.size()) +
+           (lamps.size() == 1 ? " light (" : " lights (") + counts +
+           "): lumis has no point, spot or directional lights (it renders emissive materials as a glTF file's lights)");
 }
 
 /// Every child index in range, every node with at most one parent, and no cycles (checked without recursion).

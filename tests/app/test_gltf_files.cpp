@@ -215,6 +215,26 @@ TEST_F(GltfFiles, TexturesEmbeddedExternalSamplersAndTransforms) {
   EXPECT_NE(s.warnings[0].find("KHR_materials_volume"), std::string::npos);
 }
 
+// Lamps (KHR_lights_punctual, as Blender exports them) are not rendered: a warning of their own counts them by type,
+// in place of the bare name in the list of ignored extensions. Used without any lights, the name is listed as usual.
+TEST_F(GltfFiles, PunctualLightsAreCountedInAWarning) {
+  Triangle t;
+  const std::string lamps =
+      R"(,"extensionsUsed":["KHR_lights_punctual","KHR_materials_volume"],"extensions":{"KHR_lights_punctual":)"
+      R"({"lights":[{"type":"point"},{"type":"spot","spot":{}},{"type":"point","intensity":5}]}})";
+  const std::string node = R"({"mesh":0,"children":[1]},{"extensions":{"KHR_lights_punctual":{"light":0}}})";
+  GltfScene s = load_gltf(simple("l.gltf", t.bin, t.views, t.accessors, Triangle::prim, node, lamps));
+  EXPECT_EQ(s.meshes.size(), 1u);
+  ASSERT_EQ(s.warnings.size(), 2u);
+  EXPECT_EQ(s.warnings[0], "ignored glTF extensions: KHR_materials_volume");
+  EXPECT_EQ(s.warnings[1], "KHR_lights_punctual: not rendering the file's 3 lights (2 point, 1 spot): lumis has no "
+                           "point, spot or directional lights (it renders emissive materials as a glTF file's lights)");
+  s = load_gltf(simple("n.gltf", t.bin, t.views, t.accessors, Triangle::prim, R"({"mesh":0})",
+                       R"(,"extensionsUsed":["KHR_lights_punctual"])"));
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0], "ignored glTF extensions: KHR_lights_punctual");
+}
+
 // The same PNG or JPEG bytes give the same texels whether the image is an external file, a bufferView of a .glb or a
 // data: URI: OpenImageIO decodes all three (tinygltf's stb_image, once used for embedded images, decodes JPEG
 // differently by up to a few 8-bit levels).
