@@ -134,7 +134,7 @@ int run_bench(const BenchOptions& o) {
     fs::path temp;
     try {
       if (sc.generated) {
-        const size_t tris = o.large_triangles ? o.large_triangles : o.quick ? 20'000 : 1'000'000;
+        const size_t tris = o.large_triangles ? o.large_triangles : o.quick ? 20'000 : kLargeSceneTriangles;
         temp = fs::temp_directory_path() / ("lumis-bench-large-" + std::to_string(getpid()) + ".glb");
         std::fprintf(stderr, "lumis bench: writing the large scene (%zu triangles) to %s\n", tris,
                      temp.string().c_str());

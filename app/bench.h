@@ -22,7 +22,7 @@ struct BenchOptions {
   bool quick = false;               ///< tiny settings for the smoke test
   std::string json_out;             ///< write the results as JSON here when set
   std::string assets_dir;           ///< the shared assets folder (with gltf/); empty: next to the sources
-  size_t large_triangles = 0;       ///< triangles in the generated scene (at least); 0: 1,000,000 (quick: 20,000)
+  size_t large_triangles = 0;       ///< the generated scene's triangles; 0: kLargeSceneTriangles (quick: 20,000)
   size_t raw_rays = 0;              ///< rays per kind for the raw Embree measurement; 0: 2^19 (quick: 2^12)
 };
 
@@ -31,6 +31,8 @@ int run_bench(const BenchOptions& options);
 
 /// The name that stands for the generated large scene in a scene list.
 inline constexpr const char* kLargeSceneToken = "@large";
+/// Triangles in the generated large scene unless --large-triangles says otherwise (--quick: 20,000).
+inline constexpr size_t kLargeSceneTriangles = 1'000'000;
 
 struct LargeSceneInfo {
   size_t triangles = 0;

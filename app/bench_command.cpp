@@ -11,7 +11,7 @@ namespace lumis {
 int run_bench_command(const BenchArgs& a) {
   if (!a.write_large.empty()) {
     try {
-      const size_t triangles = a.options.large_triangles ? a.options.large_triangles : 1'000'000;
+      const size_t triangles = a.options.large_triangles ? a.options.large_triangles : kLargeSceneTriangles;
       const LargeSceneInfo info = write_large_scene(a.write_large, triangles);
       std::cerr << "lumis: wrote " << a.write_large << ": " << info.triangles << " triangles, " << info.bytes
                 << " bytes\n";
