@@ -5,7 +5,8 @@
 // stratified:  the lecture's "stratified random numbers instead of a PRNG": jittered strata (spp strata for a 1D
 //              dimension, a near-square grid for a 2D one); which stratum sample `index` gets is a pseudo-random
 //              permutation keyed by (pixel, dimension, seed, block of spp samples), so dimensions are not
-//              correlated with each other.
+//              correlated with each other. The jittered point is rounded down to the 2^-24 grid, each grid value
+//              equally likely (sampler_detail::in_stratum).
 // sobol:       the 2D Sobol (0,2)-sequence per pair of dimensions (Burley 2020, "Practical Hash-based Owen
 //              Scrambling"): the index is shuffled by a nested scramble and both coordinates are Owen-scrambled,
 //              all with seeds keyed by (pixel, dimension, seed), so every pair is an independent randomised net.
@@ -131,9 +132,9 @@ Sampler::Sampler(SamplerType type, uint32_t spp, uint32_t seed) : type_(type), s
   near_square(spp_, &strata_x_, &strata_y_);
   mask_ = permute_mask(spp_);
   shift_ = std::max(1, static_cast<int>(std::bit_width(mask_)) / 2);
-  inv_spp_ = 1.0f / static_cast<float>(spp_);
-  inv_strata_x_ = 1.0f / static_cast<float>(strata_x_);
-  inv_strata_y_ = 1.0f / static_cast<float>(strata_y_);
+  inv_spp_ = 1.0 / spp_;
+  inv_strata_x_ = 1.0 / strata_x_;
+  inv_strata_y_ = 1.0 / strata_y_;
   // m = floor(2^32 / sx) + 1 exceeds 2^32 / sx by e <= sx, so (k m) >> 32 = floor(k / sx + k e / (sx 2^32)) is exact
   // while k e < 2^32, which k < spp <= 2^16 and sx <= spp guarantee.
   if (spp_ <= (1u << 16)) div_strata_x_ = (uint64_t{1} << 32) / strata_x_ + 1;
@@ -165,7 +166,7 @@ float Sampler::get1d() {
   const uint32_t d = dim_++;
   if (type_ == SamplerType::Independent) return rng_.next_float();
   if (type_ == SamplerType::Stratified)
-    return in_stratum(stratum(d), rng_.next_float(), inv_spp_);
+    return in_stratum(stratum(d), rng_.next_u32(), spp_, inv_spp_);
   const uint64_t key = hash_combine_mixed(pixel_hash_, mixed_dim(d));
   const uint32_t index = owen_scramble(index_, seed32(mix64(key)));
   return to_unit_float(owen_scramble(reverse_bits(index), seed32(mix64(key + 1))));
@@ -174,8 +175,8 @@ float Sampler::get1d() {
 Vec2 Sampler::stratified2d(uint32_t k) {
   const uint32_t row = div_strata_x_ ? static_cast<uint32_t>((k * div_strata_x_) >> 32) : k / strata_x_;
   const uint32_t column = k - row * strata_x_;
-  const float jx = rng_.next_float(), jy = rng_.next_float();
-  return {in_stratum(column, jx, inv_strata_x_), in_stratum(row, jy, inv_strata_y_)};
+  const uint32_t jx = rng_.next_u32(), jy = rng_.next_u32();
+  return {in_stratum(column, jx, strata_x_, inv_strata_x_), in_stratum(row, jy, strata_y_, inv_strata_y_)};
 }
 
 Vec2 Sampler::get2d() {
@@ -211,7 +212,7 @@ VertexDims Sampler::get_vertex() {
   uint32_t k[5];
   for (int i = 0; i < 5; ++i) k[i] = stratum(d + sampler_detail::kVertexStrata[i]);
   const auto one = [&](uint32_t stratum_k) {
-    return in_stratum(stratum_k, rng_.next_float(), inv_spp_);
+    return in_stratum(stratum_k, rng_.next_u32(), spp_, inv_spp_);
   };
   VertexDims v;
   v.choice = one(k[0]);

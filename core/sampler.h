@@ -64,7 +64,7 @@ class Sampler {
   // Stratified constants: of spp (constructor) and of the sample index (start()).
   uint32_t mask_ = 0;
   int shift_ = 1;
-  float inv_spp_ = 1, inv_strata_x_ = 1, inv_strata_y_ = 1;
+  double inv_spp_ = 1, inv_strata_x_ = 1, inv_strata_y_ = 1;  // 1 / the number of strata, for in_stratum
   uint64_t div_strata_x_ = 0;  // k / strata_x_ == (k * div_strata_x_) >> 32 for every k < spp_; 0: divide
   uint32_t stratum_index_ = 0;
   uint64_t block_hash_ = 0;  // hash of (pixel, seed, index / spp): keys the permutations of this block of spp

@@ -2,9 +2,10 @@
 // its pixel jitter) and Sampler::get_vertex_batch (a vertex's seven dimensions). Laid out by column (one array per
 // quantity, a chunk of lanes at a time), the strata hashes, the PCG32 steps and the jitters are plain loops over
 // lanes that the compiler vectorises; the kernels are compiled three times (baseline x86-64, AVX2, AVX-512) and the
-// best the CPU has is picked once. They use integer arithmetic and exactly rounded float adds, multiplies and
-// conversions only, so every kernel returns what the one-lane calls return, bit for bit (SamplerBatch.* tests check
-// each one the CPU can run).
+// best the CPU has is picked once. They use integer arithmetic and exactly rounded float and double adds, multiplies
+// and conversions only (a multiply-add the compiler may fuse is exact either way: in_stratum_product), so
+// every kernel returns what the one-lane calls return, bit for bit (SamplerBatch.* tests check each one the CPU can
+// run).
 #include <algorithm>
 
 #include "core/sampler.h"
@@ -25,7 +26,8 @@ struct StratifiedBatch {
   uint32_t mask, spp, strata_x;
   int shift;
   uint64_t div_strata_x;
-  float inv_spp, inv_strata_x, inv_strata_y;
+  uint32_t strata_y;
+  double inv_spp, inv_strata_x, inv_strata_y;
   bool walks;  // spp is not a power of two (or is 1): permute()'s cycle walking may be needed
   // Intermediate values and results.
   uint32_t stratum[5][kChunk], bits[7][kChunk], row[kChunk];
@@ -64,12 +66,13 @@ struct StratifiedBatch {
       state[k] = s;
     }
   }
-  static float one(uint32_t stratum_k, uint32_t b, float inv) {  // (stratum + next_float()) / strata
-    return sampler_detail::in_stratum(stratum_k, Pcg32::to_float(b), inv);
-  }
   /// A 1D dimension (get1d) from stratum s and draw b.
   [[gnu::always_inline]] inline void value1d(int n, int s, int b, int out) {
-    for (int k = 0; k < n; ++k) value[out][k] = one(stratum[s][k], bits[b][k], inv_spp);
+    using sampler_detail::in_stratum, sampler_detail::in_stratum_product;
+    if (sampler_detail::stratum_by_product(spp)) [[likely]]
+      for (int k = 0; k < n; ++k) value[out][k] = in_stratum_product(stratum[s][k], bits[b][k], inv_spp);
+    else
+      for (int k = 0; k < n; ++k) value[out][k] = in_stratum(stratum[s][k], bits[b][k], spp, inv_spp);
   }
   /// A 2D dimension (stratified2d) from stratum s and draws b, b + 1.
   [[gnu::always_inline]] inline void value2d(int n, int s, int b, int out) {
@@ -77,10 +80,17 @@ struct StratifiedBatch {
       for (int k = 0; k < n; ++k) row[k] = static_cast<uint32_t>((stratum[s][k] * div_strata_x) >> 32);
     else
       for (int k = 0; k < n; ++k) row[k] = stratum[s][k] / strata_x;
-    for (int k = 0; k < n; ++k) {
-      value[out][k] = one(stratum[s][k] - row[k] * strata_x, bits[b][k], inv_strata_x);
-      value[out + 1][k] = one(row[k], bits[b + 1][k], inv_strata_y);
-    }
+    using sampler_detail::in_stratum, sampler_detail::in_stratum_product;
+    if (sampler_detail::stratum_by_product(strata_x)) [[likely]]  // strata_y <= sqrt(spp) < 2^16 always
+      for (int k = 0; k < n; ++k) {
+        value[out][k] = in_stratum_product(stratum[s][k] - row[k] * strata_x, bits[b][k], inv_strata_x);
+        value[out + 1][k] = in_stratum_product(row[k], bits[b + 1][k], inv_strata_y);
+      }
+    else
+      for (int k = 0; k < n; ++k) {
+        value[out][k] = in_stratum(stratum[s][k] - row[k] * strata_x, bits[b][k], strata_x, inv_strata_x);
+        value[out + 1][k] = in_stratum(row[k], bits[b + 1][k], strata_y, inv_strata_y);
+      }
   }
 
   /// start + get2d: value[0], value[1].
@@ -121,7 +131,7 @@ int Sampler::batch_level() { return simd_level(); }
 
 void Sampler::batch_constants(void* batch) const {
   StratifiedBatch& b = *static_cast<StratifiedBatch*>(batch);
-  b.mask = mask_, b.spp = spp_, b.strata_x = strata_x_, b.shift = shift_;
+  b.mask = mask_, b.spp = spp_, b.strata_x = strata_x_, b.strata_y = strata_y_, b.shift = shift_;
   b.div_strata_x = div_strata_x_;
   b.inv_spp = inv_spp_, b.inv_strata_x = inv_strata_x_, b.inv_strata_y = inv_strata_y_;
   b.walks = spp_ <= 1 || (spp_ & (spp_ - 1)) != 0;

@@ -2,7 +2,6 @@
 // (core/sampler_batch.cpp), so that both compute the very same numbers.
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 
 #include "core/rng.h"
@@ -35,9 +34,29 @@ inline uint32_t permute_round(uint32_t i, uint32_t mask, int shift, uint64_t key
 /// Offsets of get_vertex's five strata (1D, 2D, 1D, 2D, 1D) from the vertex's first dimension.
 inline constexpr uint32_t kVertexStrata[5] = {0, 1, 3, 4, 6};
 
-/// A point of stratum `stratum` of `1 / inv` strata, jittered by `jitter` in [0, 1); below 1.
-inline float in_stratum(uint32_t stratum, float jitter, float inv) {
-  return std::min((static_cast<float>(stratum) + jitter) * inv, kOneMinusEpsilon);
+/// Whether in_stratum may divide by n through the product with 1/n (in double): below 2^27, that product's error
+/// (under 2^-28) is smaller than the distance, at least 0.5 / n, of the half-step numerator's quotient from an integer.
+inline bool stratum_by_product(uint32_t n) { return n < (1u << 27); }
+
+/// in_stratum for n strata with stratum_by_product(n), `inv_n` = 1 / n (a loop over lanes of that form vectorises).
+/// The numerator is exact in double (below 2^52, in halves), so a compiler's fused multiply-add changes nothing.
+inline float in_stratum_product(uint32_t stratum, uint32_t bits, double inv_n) {
+  const double numerator = static_cast<double>(static_cast<int32_t>(stratum)) * 0x1p24 +
+                           (static_cast<double>(static_cast<int32_t>(bits >> 8)) + 0.5);
+  return static_cast<float>(static_cast<int32_t>(numerator * inv_n)) * 0x1p-24f;
+}
+
+/// The point of stratum `stratum` of n strata, jittered by the 24 high bits m of a generator's 32 `bits` (the m of
+/// Pcg32::to_float): floor((stratum 2^24 + m) / n) x 2^-24, on the 2^-24 grid and in [0, 1). Over a uniformly random
+/// stratum and jitter, stratum 2^24 + m is uniform on [0, n 2^24), so every multiple of 2^-24 comes out exactly n
+/// times: the numbers are uniform on the grid that Distribution1D's CDF lies on, for any n. (In float,
+/// (stratum + m 2^-24) / n rounded stratum + jitter to even, and for spp 4 the upper strata drew alternate
+/// grid values 5/4 and 3/4 as often as they should.) `inv_n` is 1 / n: the quotient is the product of
+/// stratum 2^24 + m + 1/2 and inv_n, exact while stratum_by_product(n), else an integer division.
+inline float in_stratum(uint32_t stratum, uint32_t bits, uint32_t n, double inv_n) {
+  if (stratum_by_product(n)) [[likely]]
+    return in_stratum_product(stratum, bits, inv_n);
+  return static_cast<float>(((uint64_t{stratum} << 24) + (bits >> 8)) / n) * 0x1p-24f;
 }
 
 }  // namespace lumis::sampler_detail

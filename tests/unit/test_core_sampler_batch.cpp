@@ -1,6 +1,6 @@
 // Sampler::start_batch and get_vertex_batch against the one-lane calls, bit for bit, with every kernel this CPU
 // can run (baseline, AVX2, AVX-512): spp that are powers of two and not (cycle walking), 1 (a single stratum) and
-// above 2^16 (strata rows by division), sample indices past spp (a new block), more lanes than a kernel chunk,
+// above 2^16 (strata rows by division) and 2^27 (strata by integer division), sample indices past spp (a new block), more lanes than a kernel chunk,
 // lanes taken out of order, pixels that change between samples, and the other sampler types (one lane at a time).
 #include <gtest/gtest.h>
 
@@ -13,7 +13,8 @@ namespace lumis {
 namespace {
 
 constexpr SamplerType kTypes[] = {SamplerType::Independent, SamplerType::Stratified, SamplerType::Sobol};
-constexpr uint32_t kSpps[] = {1u, 2u, 6u, 7u, 16u, 48u, 64u, 1u << 17};
+// 2^27 + 29 is a prime: its strata (1D, and the 2D grid of spp x 1) are past in_stratum's double product.
+constexpr uint32_t kSpps[] = {1u, 2u, 6u, 7u, 16u, 48u, 64u, 1u << 17, (1u << 27) + 29};
 constexpr int kLanes = 150;  // more than one 64-lane chunk
 
 std::string where(SamplerType t, uint32_t spp, int level, uint32_t index, int k) {
