@@ -83,7 +83,8 @@ Vec2 invert_spherical_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, Vec3 w);
 /// seen from p, by the four-angle formula (sum of interior angles - 2 pi).
 float rectangle_solid_angle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey);
 /// Urena et al. 2013: uniform direction in the solid angle of rectangle (origin, ex, ey) seen from p.
-/// Fails (nullopt) when the solid angle is too small to sample stably.
+/// Fails (nullopt) when the solid angle is below 1e-6 sr or above 2 pi - 1e-3 sr (too small or too close to a
+/// hemisphere to sample stably), and for p in the rectangle's plane.
 std::optional<SphericalSample> sample_spherical_rectangle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey, Vec2 u);
 /// The density sample_spherical_rectangle reports from p (solid angle), nullopt exactly when it fails.
 std::optional<float> spherical_rectangle_pdf(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey);

@@ -31,7 +31,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 /// Sampler(stratified, spp, seed). The count is not known in advance, and one stratified set sized for the 2^20
 /// samples a budget allows would spread the few taken over a random handful of its strata, no better than
 /// independent samples. Instead sample i belongs to block p = floor(log2(i + 1)), a stratified set of 2^p samples
-/// with a seed of its own: blocks of 1, 1, 2, 4, 8, ... samples, so whatever count the render stops at, its whole
+/// with a seed of its own: blocks of 1, 2, 4, 8, ... samples, so whatever count the render stops at, its whole
 /// blocks, about half of its samples or more, are complete stratified sets.
 struct BlockSample {
   uint32_t block, spp, seed, index;

@@ -57,9 +57,9 @@ struct GgxBsdf {
   std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u, Vec2 azimuth) const;
 };
 
-/// glTF metallic-roughness: Lambert lobe (albedo base (1 - metallic)) plus GGX lobe (F0 = mix(0.04, base,
-/// metallic), alpha = roughness^2). Lobe choice per the lecture: diffuse with probability = luminance of the
-/// diffuse albedo, at most 0.5.
+/// glTF metallic-roughness: a diffuse lobe base (1 - metallic) / pi, Fresnel-coupled by (1 - F(cos_o)) (1 - F(cos_i))
+/// (docs/materials.md), plus a GGX lobe (F0 = mix(0.04, base, metallic), alpha = roughness^2). Lobe choice per the
+/// lecture: diffuse with probability = luminance of base (1 - metallic), at most 0.5.
 struct PbrBsdf {
   DiffuseBsdf diffuse;
   GgxBsdf specular;
