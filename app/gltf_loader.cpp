@@ -74,7 +74,7 @@ std::vector<int> check_hierarchy(const Context& ctx) {
 
 }  // namespace
 
-GltfScene load_gltf(const std::string& path, const Mat4& transform) {
+GltfScene load_gltf(const std::string& path, const Mat4& transform, bool read_cameras) {
   GltfScene scene;
   Context ctx;
   ctx.file = path;
@@ -126,7 +126,7 @@ GltfScene load_gltf(const std::string& path, const Mat4& transform) {
     const Mat4 world = parent_world * local_transform(ctx, node, at);
     if (!world.is_finite()) ctx.fail(at, "world transform is not finite");
     if (node.skin >= 0) ctx.warn_once("skin", "skins ignored (skinned meshes are drawn in their bind pose)");
-    if (node.camera >= 0) {
+    if (node.camera >= 0 && read_cameras) {
       if (scene.cameras.empty()) {
         set_camera(ctx, scene, node, world, at, orthographic);  // the default camera: its errors are the file's
       } else {

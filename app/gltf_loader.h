@@ -46,6 +46,8 @@ struct GltfScene {
 };
 
 /// Load the default scene (or scene 0) of a glTF file; `transform` maps glTF world space to lumis world space.
-GltfScene load_gltf(const std::string& path, const Mat4& transform = Mat4::identity());
+/// Without `read_cameras` (a file inside a JSON scene, which has a camera of its own) camera nodes are skipped:
+/// their cameras are neither checked nor listed, nor warned about, and `cameras` stays empty.
+GltfScene load_gltf(const std::string& path, const Mat4& transform = Mat4::identity(), bool read_cameras = true);
 
 }  // namespace lumis

@@ -66,8 +66,9 @@ std::vector<Mat4> gpu_instances(Context& ctx, AccessorCache& acc, const tinygltf
   auto it = node.extensions.find("EXT_mesh_gpu_instancing");
   if (it == node.extensions.end()) return {};
   const std::string eat = at + ".extensions.EXT_mesh_gpu_instancing.attributes";
+  // (tinygltf reads an empty object as no value: `{}` lands here too, and the extension asks for one attribute.)
   if (!it->second.IsObject() || !it->second.Has("attributes") || !it->second.Get("attributes").IsObject())
-    ctx.fail(eat, "expected an object of accessors");
+    ctx.fail(eat, "expected an object with at least one of TRANSLATION, ROTATION and SCALE (accessor indices)");
   const tinygltf::Value& attrs = it->second.Get("attributes");
   std::vector<Mat4> out;
   size_t count = 0;

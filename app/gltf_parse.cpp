@@ -57,6 +57,36 @@ std::optional<std::string> json_text(const std::string& path, bool binary) {
   return text;
 }
 
+/// A .glb's framing (glTF 2.0, "GLB File Format Specification"): a 12-byte header (magic, version 2, total length),
+/// then a JSON chunk and an optional binary one, each a length, a type and its bytes. tinygltf refuses a damaged one
+/// with "Invalid glTF binary." alone; this says which part is wrong. A file longer than its header says still loads,
+/// as tinygltf allows.
+void check_glb_framing(const Context& ctx, const std::string& path) {
+  std::error_code ec;
+  const uint64_t size = fs::file_size(path, ec);
+  if (ec) return;  // unreadable: tinygltf says so
+  const std::string n = std::to_string(size);
+  if (size < 20) ctx.fail("", "invalid .glb: the file is " + n + " bytes long, too short for the 12-byte header and a "
+                              "JSON chunk (is it cut short?)");
+  std::ifstream in(path, std::ios::binary);
+  char head[20] = {};
+  if (!in.read(head, sizeof(head))) return;
+  uint32_t version = 0, length = 0, json_length = 0;
+  std::memcpy(&version, head + 4, 4);
+  std::memcpy(&length, head + 8, 4);
+  std::memcpy(&json_length, head + 12, 4);
+  if (version != 2)
+    ctx.fail("", "invalid .glb: binary glTF version " + std::to_string(version) + ", expected 2");
+  if (length > size)
+    ctx.fail("", "invalid .glb: the header says the file is " + std::to_string(length) + " bytes long, but it is " + n +
+                     " (is it cut short?)");
+  if (std::string_view(head + 16, 4) != "JSON")
+    ctx.fail("", "invalid .glb: the first chunk (at byte 12) is not of type JSON");
+  if (uint64_t{json_length} + 20 > length)
+    ctx.fail("", "invalid .glb: the JSON chunk's " + std::to_string(json_length) + " bytes run past the " +
+                     std::to_string(length) + " bytes the header gives the file");
+}
+
 /// tinygltf converts the document to its own values recursively: refuse nesting that would overflow the stack.
 void check_depth(const Context& ctx, const std::string& text, bool binary) {
   if (const auto at = json_too_deep(text))
@@ -98,6 +128,7 @@ void parse_file(Context& ctx, const std::string& path) {
   char magic[4] = {};
   std::ifstream(path, std::ios::binary).read(magic, 4);
   const bool binary = std::string(magic, 4) == "glTF";
+  if (binary) check_glb_framing(ctx, path);
   const std::optional<std::string> text = json_text(path, binary);
   if (text) check_depth(ctx, *text, binary);
   PlusUris plus;

@@ -25,10 +25,13 @@ std::optional<size_t> json_too_deep(std::string_view text, size_t limit) {
 
 std::string json_line_column(std::string_view text, size_t offset) {
   offset = std::min(offset, text.size());
-  size_t line = 1, line_start = 0;
-  for (size_t i = 0; i < offset; ++i)
-    if (text[i] == '\n') ++line, line_start = i + 1;
-  return std::to_string(line) + ":" + std::to_string(offset - line_start + 1);
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < offset; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '\n') ++line, column = 1;
+    else if ((c & 0xc0) != 0x80) ++column;  // a character is counted at its first byte, not at UTF-8's continuations
+  }
+  return std::to_string(line) + ":" + std::to_string(column);
 }
 
 }  // namespace lumis

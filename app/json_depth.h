@@ -17,7 +17,8 @@ inline constexpr size_t kMaxJsonDepth = 512;
 /// never nests deeper than `limit`. Syntax is not checked here: the parser does that.
 std::optional<size_t> json_too_deep(std::string_view text, size_t limit = kMaxJsonDepth);
 
-/// "line:column" (both 1-based) of a byte offset in the text (also used for JSON syntax errors).
+/// "line:column" (both 1-based) of a byte offset in UTF-8 text, the column in characters as an editor counts them
+/// (also used for JSON syntax errors).
 std::string json_line_column(std::string_view text, size_t offset);
 
 }  // namespace lumis

@@ -21,7 +21,7 @@ void JsonSceneBuilder::add_gltf_shape(const JsonNode& node) {
   const TriangleSampling sampling = json_mesh_sampling(node);
   GltfScene gltf;
   try {
-    gltf = load_gltf(path, transform);
+    gltf = load_gltf(path, transform, /*read_cameras=*/false);  // the scene's own `camera` is used
   } catch (const ImageError& e) {
     file.fail(std::string("cannot read a texture of the glTF file: ") + e.what());
   } catch (const SceneError& e) {
@@ -45,6 +45,8 @@ void JsonSceneBuilder::add_gltf_shape(const JsonNode& node) {
     }
   }
   for (const auto& w : gltf.warnings) std::cerr << path << ": warning: " << w << "\n";
+  // As a mesh shape with no triangle left, and as the file on its own ("scene is empty"): the shape would add nothing.
+  if (gltf.meshes.empty()) file.fail("the glTF file has no triangle meshes, so the shape would add nothing");
   scene_.input_images.insert(scene_.input_images.end(), gltf.image_files.begin(), gltf.image_files.end());
   scene_.input_files.push_back(path);
   scene_.input_files.insert(scene_.input_files.end(), gltf.buffer_files.begin(), gltf.buffer_files.end());

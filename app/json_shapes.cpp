@@ -58,7 +58,7 @@ TriangleSampling json_mesh_sampling(const JsonNode& node) {
 
 void JsonSceneBuilder::add_shape(const JsonNode& node) {
   static const std::vector<std::string> types = {"sphere", "quad", "mesh", "gltf"};
-  if (auto n = node.find("name")) n->as_string();  // only used in messages, but a string on every kind of shape
+  if (auto n = node.find("name")) n->as_string();  // a label for the reader, but a string on every kind of shape
   switch (node["type"].as_choice(types, "shape type")) {
     case 0: add_sphere_shape(node); break;
     case 1: add_quad_shape(node); break;
@@ -96,13 +96,15 @@ void JsonSceneBuilder::add_quad_shape(const JsonNode& node) {
   MaterialEmission emission;
   if (auto e = node.find("emission")) emission.factor = parse_radiance(*e);
   else if (auto it = material_emission_.find(mesh.material); it != material_emission_.end()) emission = it->second;
-  // A textured or two-sided emitter needs the general mesh light; a plain one gets the quad light's sampling.
+  // A textured or two-sided emitter needs the general mesh light; a plain one gets the quad light's sampling. The
+  // mesh light samples its two triangles as `sampling` says: by solid angle (spherical triangles) or by area.
   if (emission.emits() && !emission.texture && !emission.two_sided) {
     mesh.light = static_cast<int>(scene_.lights.size());
     scene_.lights.push_back(make_quad_light(q.origin, q.edge_u, q.edge_v, emission.factor, sampling));
     emission = {};
   }
-  add_mesh(std::move(mesh), emission, TriangleSampling::SphericalTriangle);
+  add_mesh(std::move(mesh), emission,
+           sampling == QuadSampling::Area ? TriangleSampling::Area : TriangleSampling::SphericalTriangle);
 }
 
 namespace {

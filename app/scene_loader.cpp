@@ -28,10 +28,32 @@ namespace {
 // in scenes much smaller than this, and images go wrong: the geometry's bounding box must be at least this large.
 constexpr float kMinSize = 1e-12f;
 
-std::string format_number(float v) {
+std::string format_number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
+}
+
+std::string too_far(double extent) {
+  return format_number(extent) + " scene units from the origin; coordinates must stay within " +
+         format_number(kMaxCoordinate) + " (scale the scene down)";
+}
+
+// A JSON shape or light (`what`) whose geometry, ids `first` on, reaches beyond kMaxCoordinate: an error at its node,
+// before check_extent would find the whole scene too large without saying where.
+void check_reach(const Scene& scene, size_t first, const JsonNode& node, const std::string& what) {
+  double reach = 0;  // in double: a sphere's |centre| + radius may pass float's range
+  for (size_t id = first; id < scene.geometry.geometry_count(); ++id) {
+    const auto g = static_cast<uint32_t>(id);
+    if (scene.geometry.is_mesh(g)) {
+      for (const Vec3& p : scene.geometry.mesh(g).positions)
+        reach = std::max(reach, static_cast<double>(max_component(abs(p))));
+    } else {
+      const Sphere& s = scene.geometry.sphere(g);
+      reach = std::max(reach, static_cast<double>(max_component(abs(s.center))) + s.radius);
+    }
+  }
+  if (!(reach <= kMaxCoordinate)) node.fail("the " + what + " reaches " + too_far(reach));
 }
 
 }  // namespace
@@ -42,9 +64,7 @@ void check_extent(const Scene& scene, const std::string& path, const std::string
   if (!b.empty()) {
     const float extent = std::max(max_component(abs(b.lo)), max_component(abs(b.hi)));
     if (!(extent <= kMaxCoordinate))
-      throw SceneError(path, "", "the geometry reaches " + format_number(extent) +
-                                     " scene units from the origin; coordinates must stay within " +
-                                     format_number(kMaxCoordinate) + " (scale the scene down)");
+      throw SceneError(path, "", "the geometry reaches " + too_far(extent));
     const float size = max_component(b.diagonal());
     if (!(size >= kMinSize))
       throw SceneError(path, "", "the geometry spans only " + format_number(size) +
@@ -163,8 +183,16 @@ std::unique_ptr<Scene> load_json_scene(const std::string& text, const std::strin
   std::vector<JsonNode> shapes, lights;
   if (auto s = root.find("shapes")) shapes = s->elements();
   if (auto l = root.find("lights")) lights = l->elements();
-  for (const auto& s : shapes) builder.add_shape(s);
-  for (const auto& l : lights) builder.add_light(l);
+  for (const auto& s : shapes) {
+    const size_t first = scene->geometry.geometry_count();
+    builder.add_shape(s);
+    check_reach(*scene, first, s, "shape");
+  }
+  for (const auto& l : lights) {
+    const size_t first = scene->geometry.geometry_count();
+    builder.add_light(l);
+    check_reach(*scene, first, l, "light");
+  }
   // A malformed camera is named before an empty scene: each section's own errors come first.
   if (auto c = root.find("camera")) parse_camera(*c, scene->camera);
   if (shapes.empty() && lights.empty()) throw SceneError(path, "", "scene is empty: it has no shapes and no lights");

@@ -259,6 +259,28 @@ TEST_F(SceneLoader, EmissionMakesShapesLightsThatStayGeometry) {
   EXPECT_EQ(scene->geometry.mesh(2).light, 2);
 }
 
+// A quad that emits through a double-sided (or textured) material is a mesh light of its two triangles, and its
+// `sampling` still applies (it was ignored without a word): by area the density toward points of one triangle
+// varies with the point, uniformly in solid angle it does not.
+TEST_F(SceneLoader, QuadSamplingAppliesToAQuadSampledAsAMeshLight) {
+  for (const std::string sampling : {"area", "spherical_rectangle"}) {
+    const auto scene = load_scene(write_scene(
+        R"({"materials": {"glow": {"type": "pbr", "emissive": [1, 1, 1], "double_sided": true}},
+            "shapes": [{"type": "quad", "origin": [0,0,0], "edge_u": [1,0,0], "edge_v": [0,1,0], "material": "glow",
+                        "sampling": ")" + sampling + R"("}]})"));
+    ASSERT_EQ(scene->lights.size(), 1u);
+    ASSERT_EQ(scene->lights[0]->name(), "mesh");
+    const LightSampleContext ctx{{0.2f, 0.3f, 1}, {0, 0, -1}};
+    const auto a = scene->lights[0]->sample(ctx, {0.1f, 0.2f}), b = scene->lights[0]->sample(ctx, {0.1f, 0.9f});
+    ASSERT_TRUE(a && b) << sampling;
+    ASSERT_GT(length(a->p_light - b->p_light), 0.1f) << sampling;  // two points of the same triangle (same u.x)
+    if (sampling == "area")
+      EXPECT_GT(std::abs(a->pdf / b->pdf - 1), 0.05f) << a->pdf << " " << b->pdf;
+    else
+      EXPECT_NEAR(a->pdf / b->pdf, 1, 1e-5f) << a->pdf << " " << b->pdf;
+  }
+}
+
 // A pbr material with non-zero emissive makes every shape using it a light with that radiance: a sphere, and a glTF
 // mesh whose own material is replaced by it ("materials"); "emission" on the shape wins over it.
 TEST_F(SceneLoader, EmissiveMaterialMakesEveryShapeUsingItALight) {

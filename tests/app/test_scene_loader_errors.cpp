@@ -9,6 +9,7 @@
 
 #include "core/image_io.h"
 
+#include "tests/app/gltf_synthetic.h"
 #include "tests/app/scene_loader_test_util.h"
 
 namespace lumis {
@@ -31,6 +32,13 @@ TEST_F(SceneLoaderErrors, SyntaxErrorGivesLineAndColumn) {
   EXPECT_EQ(e.location, "3:10") << e.what();
   EXPECT_NE(e.detail.find("invalid JSON"), std::string::npos) << e.what();
   EXPECT_NE(e.detail.find("expected '}'"), std::string::npos) << e.what();
+}
+
+// The column counts characters, as an editor does, not bytes: "é" is two bytes in UTF-8 (it read 1:28 here).
+TEST_F(SceneLoaderErrors, SyntaxErrorColumnCountsCharactersNotBytes) {
+  EXPECT_EQ(load_error("{\"materials\": {\"eee\": 1 x}}").location, "1:25");
+  EXPECT_EQ(load_error("{\"materials\": {\"\u00e9\u00e9\u00e9\": 1 x}}").location, "1:25");
+  EXPECT_EQ(load_error("{\"a\": \"\u00e9\",\n \"\u20ac\": 1 x}").location, "2:9");  // a new line starts again
 }
 
 TEST_F(SceneLoaderErrors, TruncatedFileGivesPositionAtTheEnd) {
@@ -237,6 +245,19 @@ TEST_F(SceneLoaderErrors, ErrorInsideAGltfFileNamesTheShape) {
       {"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}, {"type": "gltf", "file": "Model.GLTF"}]})");
   EXPECT_EQ(e.location, "/shapes/1/file") << e.what();
   EXPECT_EQ(e.detail, "in " + gltf + ":asset.version: glTF version \"1.0\": lumis reads glTF 2.0 (major version 2)");
+}
+
+// A glTF file with no triangles (points only) would add nothing to the scene: an error, as a mesh shape with no
+// triangle left is, and as the file on its own is ("scene is empty"). It rendered black with only a warning.
+TEST_F(SceneLoaderErrors, GltfFileWithoutTrianglesIsAnError) {
+  const gltf_test::Triangle t;
+  write_file("points.gltf", std::string(R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],)") +
+                                R"("nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},)" +
+                                R"("mode":0}]}],"buffers":[)" + t.bin.buffer_json() + R"(],"bufferViews":)" + t.views +
+                                R"(,"accessors":)" + t.accessors + "}");
+  EXPECT_SCENE_ERROR(R"({"materials": {"m": {"type": "diffuse"}}, "shapes": [
+      {"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}, {"type": "gltf", "file": "points.gltf"}]})",
+                     "/shapes/1/file", "the glTF file has no triangle meshes, so the shape would add nothing");
 }
 
 TEST_F(SceneLoaderErrors, GltfMaterialNameNotInFile) {

@@ -85,6 +85,31 @@ TEST_F(SceneLoader, GltfCameraExtremeAspectRatioClampsTheHeight) {
   EXPECT_EQ(testing::internal::GetCapturedStderr().find("aspectRatio"), std::string::npos);
 }
 
+// Inside a JSON scene a glTF file's cameras are not read, since the scene's own camera is used: one that lumis refuses
+// in the file alone (yfov 4 radians) is no error there, and an orthographic one is not reported as skipped.
+TEST_F(SceneLoader, GltfCamerasAreNotReadInsideAJsonScene) {
+  const gltf_test::Triangle t;
+  const std::string file = write_file(
+      "cams.gltf", std::string(R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1,2]}],"nodes":[{"mesh":0},)"
+                   R"({"camera":0,"translation":[0,0,3]},{"camera":1}],"cameras":[{"type":"perspective",)"
+                   R"("perspective":{"yfov":4.0,"znear":0.01}},{"type":"orthographic","orthographic":)"
+                   R"({"xmag":1,"ymag":1,"znear":0.01,"zfar":10}}],"meshes":[{"primitives":[)") +
+                       gltf_test::Triangle::prim + R"(]}],"buffers":[)" + t.bin.buffer_json() +
+                       R"(],"bufferViews":)" + t.views + R"(,"accessors":)" + t.accessors + "}");
+  try {
+    load_scene(file);
+    ADD_FAILURE() << "the file alone loaded with a yfov of 4 radians";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.location, "cameras[0].perspective.yfov");
+  }
+  testing::internal::CaptureStderr();
+  const auto scene = load_scene(write_scene(R"({"camera": {"from": [0,0,3], "to": [0,0,0]},
+      "shapes": [{"type": "gltf", "file": "cams.gltf"}]})"));
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(err.find("camera"), std::string::npos) << err;
+  EXPECT_EQ(scene->camera.from, Vec3(0, 0, 3));
+}
+
 // Emission read from a texture is usually a decal (the helmet's visor display), too weak to light a model: a file
 // whose only emission is textured gets the white sky too, and its textured emitters stay lights.
 TEST_F(SceneLoader, GltfWithOnlyTexturedEmissionStillGetsTheSky) {

@@ -163,10 +163,13 @@ case("json_mesh_overflow", ".json",
 case("json_camera_far", ".json", dump(scene(camera={"from": [0, 0, 1e19], "to": [0, 0, 0]})),
      "/camera/from: the camera is 1e+19 scene units from the origin")
 case("json_sphere_beyond_float", ".json", dump(scene(camera=None, shapes=[sphere(center=[3e38, 0, 0], radius=3e38)])),
-     "coordinates must stay within 1e+15")
+     "/shapes/0: the shape reaches 6e+38 scene units from the origin; coordinates must stay within 1e+15")
 case("json_quad_far", ".json",
      dump(scene(shapes=[{"type": "quad", "origin": [2e15, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0],
-                         "material": "grey"}])), "the geometry reaches 2e+15")
+                         "material": "grey"}])), "/shapes/0: the shape reaches 2e+15")
+case("json_light_far", ".json",
+     dump(scene(lights=[{"type": "sphere", "center": [0, 0, -3e15], "radius": 1, "radiance": [1, 1, 1]}])),
+     "/lights/0: the light reaches 3e+15")
 
 # Empty scenes.
 case("json_empty_object", ".json", "{}\n", "scene is empty")
@@ -278,11 +281,20 @@ def variant(mutate, positions=TRI, indices=(0, 1, 2)):
 case("gltf_invalid_json", ".gltf", '{"asset": {"version": "2.0"}, "meshes": [\n', "invalid glTF")
 case("gltf_not_gltf", ".gltf", '{"hello": 1}\n', "invalid glTF")
 good_glb = glb(good_doc, good_data)
-case("glb_truncated", ".glb", good_glb[: len(good_glb) // 2], "invalid .glb")
-case("glb_header_only", ".glb", good_glb[:12], "invalid .glb")
+# A damaged .glb's framing is named (tinygltf says only "Invalid glTF binary.").
+case("glb_truncated", ".glb", good_glb[: len(good_glb) // 2],
+     "invalid .glb: the header says the file is %d bytes long, but it is %d (is it cut short?)"
+     % (len(good_glb), len(good_glb) // 2))
+case("glb_header_only", ".glb", good_glb[:12], "invalid .glb: the file is 12 bytes long, too short for the 12-byte header")
 case("glb_empty", ".glb", b"", "invalid")
-case("glb_length_too_large", ".glb", good_glb[:8] + struct.pack("<I", 1 << 30) + good_glb[12:], "invalid .glb")
-case("glb_chunk_length_too_large", ".glb", good_glb[:12] + struct.pack("<I", 1 << 30) + good_glb[16:], "invalid .glb")
+case("glb_length_too_large", ".glb", good_glb[:8] + struct.pack("<I", 1 << 30) + good_glb[12:],
+     "invalid .glb: the header says the file is 1073741824 bytes long")
+case("glb_chunk_length_too_large", ".glb", good_glb[:12] + struct.pack("<I", 1 << 30) + good_glb[16:],
+     "invalid .glb: the JSON chunk's 1073741824 bytes run past the %d bytes the header gives the file" % len(good_glb))
+case("glb_version_1", ".glb", good_glb[:4] + struct.pack("<I", 1) + good_glb[8:],
+     "invalid .glb: binary glTF version 1, expected 2")
+case("glb_first_chunk_not_json", ".glb", good_glb[:16] + b"BIN\0" + good_glb[20:],
+     "invalid .glb: the first chunk (at byte 12) is not of type JSON")
 case("glb_bad_magic", ".glb", b"gltf" + good_glb[4:], "invalid")
 
 
@@ -337,6 +349,15 @@ def empty_instancing(d):
 
 case("gltf_instancing_count_zero", ".gltf", embed(*variant(empty_instancing)),
      "expected at least 1 element (used by nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.TRANSLATION)")
+def no_instance_attributes(d):
+    d["nodes"][0]["extensions"] = {"EXT_mesh_gpu_instancing": {"attributes": {}}}
+    d["extensionsUsed"] = ["EXT_mesh_gpu_instancing"]
+
+
+# An empty object (which tinygltf reads as no value): the message once said "expected an object" of an object.
+case("gltf_instancing_no_attributes", ".gltf", embed(*variant(no_instance_attributes)),
+     "nodes[0].extensions.EXT_mesh_gpu_instancing.attributes: expected an object with at least one of TRANSLATION, "
+     "ROTATION and SCALE")
 # A valid rotation whose components' squares overflow double (1e200): normalised, not rejected. Renders (exit 0).
 case("gltf_rotation_huge", ".gltf", embed(*variant(set_path(["nodes", 0, "rotation"], [1e200, 0, 0, 1e200]))), "", 0)
 # Found by a user's test (2026-12-06): glTF that breaks the spec in ways tinygltf accepts.
