@@ -113,7 +113,7 @@ int run_bench(const BenchOptions& o) {
     }
   }
   if (!o.json_out.empty()) {
-    if (const std::string problem = output_file_problem(o.json_out); !problem.empty()) {
+    if (const std::string problem = output_file_problem(o.json_out, "results.json"); !problem.empty()) {
       std::cerr << "lumis: bench: " << o.json_out << ": " << problem << "\n";
       return 2;
     }

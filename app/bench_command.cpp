@@ -10,6 +10,10 @@ namespace lumis {
 
 int run_bench_command(const BenchArgs& a) {
   if (!a.write_large.empty()) {
+    if (const std::string problem = output_file_problem(a.write_large, "room.glb"); !problem.empty()) {
+      std::cerr << "lumis: bench: " << a.write_large << ": " << problem << "\n";
+      return 2;
+    }
     try {
       const size_t triangles = a.options.large_triangles ? a.options.large_triangles : kLargeSceneTriangles;
       const LargeSceneInfo info = write_large_scene(a.write_large, triangles);

@@ -168,7 +168,7 @@ int run_warptest(const std::string& name, float param, uint64_t samples, const s
   }
   if (!out_png.empty()) {  // checked before the work, like render's -o
     const std::string ext = lower_extension(out_png);
-    if (const std::string problem = output_file_problem(out_png); !problem.empty()) {
+    if (const std::string problem = output_file_problem(out_png, "warp.png"); !problem.empty()) {
       err << "warptest: " << out_png << ": " << problem << '\n';
       return 2;
     }

@@ -5,8 +5,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
+#include <mutex>
 #include <system_error>
 
 namespace lumis {
@@ -33,6 +37,74 @@ std::string write_all(int fd, std::string_view bytes) {
   return {};
 }
 
+// The temporary files being written, for a signal that would end the process mid-write: SIGINT (Ctrl-C), SIGTERM,
+// SIGHUP (a closed terminal) and SIGQUIT, where the command leaves them to their default action, remove them first.
+// A few slots, for writes on several threads at once; a longer path, or a ninth write, goes unguarded.
+constexpr int kSlots = 8;
+constexpr size_t kPathMax = 4096;
+char g_tmp_path[kSlots][kPathMax];
+std::atomic<bool> g_tmp_used[kSlots];
+constexpr int kEndingSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+std::mutex g_handlers_mutex;
+int g_writers = 0;  // writes in progress; the handlers are installed while there are any
+bool g_installed[std::size(kEndingSignals)];
+
+void remove_temporaries_and_end(int sig) {
+  for (int i = 0; i < kSlots; ++i)
+    if (g_tmp_used[i].load()) ::unlink(g_tmp_path[i]);  // async-signal-safe
+  struct sigaction dfl {};
+  dfl.sa_handler = SIG_DFL;
+  ::sigaction(sig, &dfl, nullptr);
+  ::raise(sig);  // the default action, so the exit status is the signal's (130 for Ctrl-C)
+}
+
+/// Registers `tmp` for removal by the handlers while it lives; installs them for the signals still at their default
+/// action (a command that handles one itself, as render does Ctrl-C, keeps its handler).
+class TemporaryGuard {
+ public:
+  explicit TemporaryGuard(const std::string& tmp) {
+    if (tmp.size() < kPathMax)
+      for (int i = 0; i < kSlots && slot_ < 0; ++i) {
+        bool expected = false;
+        if (!g_tmp_used[i].load() && g_tmp_used[i].compare_exchange_strong(expected, true)) slot_ = i;
+      }
+    if (slot_ >= 0) {
+      g_tmp_used[slot_].store(false);  // written while unused: the handler never reads a half-copied path
+      std::memcpy(g_tmp_path[slot_], tmp.c_str(), tmp.size() + 1);
+      g_tmp_used[slot_].store(true);
+    }
+    const std::lock_guard<std::mutex> lock(g_handlers_mutex);
+    if (g_writers++ > 0) return;
+    for (size_t k = 0; k < std::size(kEndingSignals); ++k) {
+      struct sigaction old {};
+      g_installed[k] = false;
+      if (::sigaction(kEndingSignals[k], nullptr, &old) != 0 || old.sa_handler != SIG_DFL) continue;
+      struct sigaction act {};
+      act.sa_handler = remove_temporaries_and_end;
+      sigfillset(&act.sa_mask);
+      g_installed[k] = ::sigaction(kEndingSignals[k], &act, nullptr) == 0;
+    }
+  }
+  ~TemporaryGuard() {
+    {
+      const std::lock_guard<std::mutex> lock(g_handlers_mutex);
+      if (--g_writers == 0)
+        for (size_t k = 0; k < std::size(kEndingSignals); ++k)
+          if (g_installed[k]) {
+            struct sigaction dfl {};
+            dfl.sa_handler = SIG_DFL;
+            ::sigaction(kEndingSignals[k], &dfl, nullptr);
+          }
+    }
+    if (slot_ >= 0) g_tmp_used[slot_].store(false);
+  }
+  TemporaryGuard(const TemporaryGuard&) = delete;
+  TemporaryGuard& operator=(const TemporaryGuard&) = delete;
+
+ private:
+  int slot_ = -1;
+};
+
 }  // namespace
 
 std::string written_file(const std::string& path, bool* loop) {
@@ -58,10 +130,20 @@ std::string write_file_atomically(const std::string& link_or_path, std::string_v
   if (loop) return "cannot create the file: " + reason(ELOOP);
   // Through a link, the reason names the file actually written.
   const std::string via = path == link_or_path ? "" : " (writing " + path + ", where the link leads)";
+  // A pipe, device or socket would be replaced by the rename, and a folder cannot be (the commands refuse both up
+  // front; this is the last word, before anything is written).
+  struct stat old {};
+  const bool exists = ::stat(path.c_str(), &old) == 0;
+  if (exists && S_ISDIR(old.st_mode)) return "cannot replace it: it is a folder" + via;
+  if (exists && !S_ISREG(old.st_mode))
+    return "cannot replace it: not a regular file (a pipe, device or socket)" + via;
   std::string why;
   const std::string tmp = path + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
+  const TemporaryGuard guard(tmp);  // registered before it exists: a signal after open() still removes it
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) return "cannot create the file: " + reason(errno) + via;
+  // A file replaced keeps its permissions (a private 0600 image stays private); a new one gets 0666 less the umask.
+  if (exists) ::fchmod(fd, old.st_mode & 0777);
   why = write_all(fd, bytes);
   // close() reports what a network or quota-limited file system only learns when the data leaves the cache. On
   // Linux the descriptor is released even when close fails, so it is never retried.

@@ -23,20 +23,26 @@ inline std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-/// Why an output file could not be created at path, checked before any work is done: the path is a folder, its
-/// folder does not exist or is not a folder, or the folder is not writable. Empty when none of these holds (the
-/// write can still fail later, e.g. on a full disk). The message starts with what is wrong, for "lumis: PATH: ".
-inline std::string output_file_problem(const std::string& path) {
+/// Why an output file could not be created at path, checked before any work is done: the path is a folder, or
+/// something other than a regular file (a pipe, device or socket, which the write's rename would replace with a
+/// file), its folder does not exist or is not a folder, or the folder is not writable. Empty when none of these holds
+/// (the write can still fail later, e.g. on a full disk). The message starts with what is wrong, for
+/// "lumis: PATH: "; a folder's names `example` ("out.png") as the file to give instead.
+inline std::string output_file_problem(const std::string& path, const std::string& example = "out.png") {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (path.empty()) return "empty output file name";
   if (fs::is_directory(path, ec))
-    return "is a folder; give an image file name, e.g. " + (fs::path(path) / "out.png").string();
+    return "is a folder; give a file name, e.g. " + (fs::path(path) / example).string();
   // A symbolic link is written through (core/atomic_write.h): its target's folder is the one that must be writable.
   bool loop = false;
   const std::string file = written_file(path, &loop);
   if (loop) return "is a loop of symbolic links";
   const std::string via = file == path ? "" : "links to " + file + ", but ";
+  if (const fs::file_status st = fs::symlink_status(file, ec); fs::exists(st) && !fs::is_regular_file(st))
+    return via + (via.empty() ? "is" : "it is") +
+           " not a regular file (a pipe, device or socket): lumis writes a whole file and renames it into place, "
+           "which would replace it";
   const fs::path parent = fs::path(file).parent_path();
   const std::string folder = parent.empty() ? "." : parent.string();
   if (!fs::exists(folder, ec)) return via + "the folder " + folder + " does not exist";

@@ -37,10 +37,19 @@ done
 [ -z "$(ls -A "$T/cwd")" ] || fail "an empty name wrote $(ls -A "$T/cwd")"
 mkdir "$T/dir"
 quick 2 "$LUMIS" "${LONG[@]}" -o "$T/dir"
-has "$T/dir: is a folder; give an image file name"
+has "$T/dir: is a folder; give a file name, e.g. $T/dir/out.png"
 touch "$T/file"
 quick 2 "$LUMIS" "${LONG[@]}" -o "$T/file/out.png"
 has "$T/file is not a folder"
+# A pipe (or device) as the output is refused, not replaced by a file (as root, `--json /dev/null` replaced
+# /dev/null), and so is the bench's room into a missing folder.
+mkfifo "$T/fifo.png"
+quick 2 "$LUMIS" "${LONG[@]}" -o "$T/fifo.png"
+has "$T/fifo.png: is not a regular file (a pipe, device or socket)"
+[ -p "$T/fifo.png" ] || fail "the pipe $T/fifo.png was replaced"
+rm -f "$T/fifo.png"
+quick 2 "$LUMIS" bench --write-large-scene "$T/no-such-folder/room.glb"
+has "the folder $T/no-such-folder does not exist"
 [ -z "$(ls -A "$T/dir")" ] || fail "files left in $T/dir: $(ls -A "$T/dir")"
 # -o through a symbolic link is checked where the link leads (the render is written there): a link into a missing
 # folder once passed this check and failed only after the whole render; a loop of links fails too.

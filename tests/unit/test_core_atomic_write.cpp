@@ -1,7 +1,11 @@
 // write_file_atomically: a file is written whole or not at all, and a failure says why without naming the
 // temporary file. A file-size limit stands in for a full disk (tests/support/file_size_limit.h).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <filesystem>
 #include <fstream>
@@ -101,7 +105,7 @@ TEST_F(AtomicWrite, AMissingFolderOrAFolderInTheWayIsAnErrorNamingNoTemporary) {
             "cannot create the file: No such file or directory");
   fs::create_directories(dir_ / "taken" / "inside");
   const std::string why = write_file_atomically(file("taken"), "x");
-  EXPECT_EQ(why.rfind("cannot rename the finished temporary file into place: ", 0), 0u) << why;
+  EXPECT_EQ(why, "cannot replace it: it is a folder");  // refused before a temporary is written
   EXPECT_EQ(why.find("tmp-"), std::string::npos) << why;
   EXPECT_EQ(listing(), std::vector<std::string>{"taken"});
 }
@@ -114,4 +118,71 @@ TEST_F(AtomicWrite, ALongerLeftoverTemporaryDoesNotKeepItsTail) {
   EXPECT_EQ(write_file_atomically(file("out.txt"), "short"), "");
   EXPECT_EQ(content("out.txt"), "short");
   EXPECT_EQ(listing(), std::vector<std::string>{"out.txt"});
+}
+
+// A pipe, device or socket where the file should go is not replaced by a file (the rename would have done so: as
+// root, `bench --json /dev/null` replaced /dev/null). The write is refused and the pipe stays.
+TEST_F(AtomicWrite, APipeOrDeviceIsNotReplaced) {
+  ASSERT_EQ(::mkfifo(file("fifo").c_str(), 0600), 0);
+  const std::string why = write_file_atomically(file("fifo"), "bytes");
+  EXPECT_NE(why.find("not a regular file"), std::string::npos) << why;
+  EXPECT_TRUE(fs::is_fifo(file("fifo")));
+  EXPECT_EQ(listing().size(), 1u);  // no temporary left
+}
+
+// A file replaced keeps its permissions: a private (0600) image stays private, a read-only one read-only.
+TEST_F(AtomicWrite, AReplacedFileKeepsItsPermissions) {
+  for (const mode_t mode : {mode_t{0600}, mode_t{0444}, mode_t{0640}}) {
+    ASSERT_EQ(write_file_atomically(file("p.txt"), "old"), "");
+    ASSERT_EQ(::chmod(file("p.txt").c_str(), mode), 0);
+    ASSERT_EQ(write_file_atomically(file("p.txt"), "new"), "");
+    struct stat st {};
+    ASSERT_EQ(::stat(file("p.txt").c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, mode) << std::oct << mode;
+    EXPECT_EQ(content("p.txt"), "new");
+    ::chmod(file("p.txt").c_str(), 0600);
+    fs::remove(file("p.txt"));
+  }
+}
+
+// A signal that ends the process during the write (Ctrl-C in diff or compare, SIGHUP when the terminal closes) first
+// removes the temporary file. Deterministic: the temporary's name is made a FIFO before the child writes, so the
+// child blocks in open() with its temporary registered, and is sent SIGTERM there; it must die of SIGTERM having
+// removed the FIFO. (Without the handler the FIFO stays, as a half-written image did.)
+TEST_F(AtomicWrite, ASignalDuringTheWriteRemovesTheTemporary) {
+  for (const int sig : {SIGTERM, SIGINT, SIGHUP}) {
+    int go[2];
+    ASSERT_EQ(::pipe(go), 0);
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      ::signal(sig, SIG_DFL);
+      char c;
+      if (::read(go[0], &c, 1) != 1) ::_exit(3);
+      write_file_atomically(file("out.png"), "bytes");
+      ::_exit(4);  // the write finished: the FIFO never blocked it
+    }
+    ::close(go[0]);
+    const std::string tmp = file("out.png") + ".tmp-" + std::to_string(child);
+    ASSERT_EQ(::mkfifo(tmp.c_str(), 0600), 0);
+    ASSERT_EQ(::write(go[1], "x", 1), 1);
+    ::close(go[1]);
+    // The child is in open() once it is no longer running: poll its state in /proc (at most 10 s).
+    bool blocked = false;
+    for (int i = 0; i < 10000 && !blocked; ++i) {
+      std::ifstream stat("/proc/" + std::to_string(child) + "/stat");
+      std::string pid, comm, state;
+      stat >> pid >> comm >> state;
+      blocked = state == "S";
+      if (!blocked) ::usleep(1000);
+    }
+    ::usleep(20000);
+    ::kill(child, sig);
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "signal " << sig << ", status " << status;
+    EXPECT_FALSE(fs::exists(fs::symlink_status(tmp))) << "signal " << sig << ": the temporary is still there";
+    EXPECT_FALSE(fs::exists(file("out.png")));
+    fs::remove(tmp);
+  }
 }
