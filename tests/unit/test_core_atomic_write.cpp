@@ -147,27 +147,33 @@ TEST_F(AtomicWrite, AReplacedFileKeepsItsPermissions) {
 
 // A signal that ends the process during the write (Ctrl-C in diff or compare, SIGHUP when the terminal closes) first
 // removes the temporary file. Deterministic: the temporary's name is made a FIFO before the child writes, so the
-// child blocks in open() with its temporary registered, and is sent SIGTERM there; it must die of SIGTERM having
-// removed the FIFO. (Without the handler the FIFO stays, as a half-written image did.)
+// child blocks in open() with its temporary registered, and is sent the signal there; it must die of it having
+// removed the FIFO. (Without the handler the FIFO stays, as a half-written image did.) The child says when it starts
+// the write, and after that open() is the only place it can sleep, so the parent waits for both.
 TEST_F(AtomicWrite, ASignalDuringTheWriteRemovesTheTemporary) {
   for (const int sig : {SIGTERM, SIGINT, SIGHUP}) {
-    int go[2];
+    int go[2], started[2];
     ASSERT_EQ(::pipe(go), 0);
+    ASSERT_EQ(::pipe(started), 0);
     const pid_t child = ::fork();
     ASSERT_GE(child, 0);
     if (child == 0) {
       ::signal(sig, SIG_DFL);
       char c;
-      if (::read(go[0], &c, 1) != 1) ::_exit(3);
+      if (::read(go[0], &c, 1) != 1 || ::write(started[1], "s", 1) != 1) ::_exit(3);
       write_file_atomically(file("out.png"), "bytes");
       ::_exit(4);  // the write finished: the FIFO never blocked it
     }
     ::close(go[0]);
+    ::close(started[1]);
     const std::string tmp = file("out.png") + ".tmp-" + std::to_string(child);
     ASSERT_EQ(::mkfifo(tmp.c_str(), 0600), 0);
     ASSERT_EQ(::write(go[1], "x", 1), 1);
     ::close(go[1]);
-    // The child is in open() once it is no longer running: poll its state in /proc (at most 10 s).
+    char c;
+    ASSERT_EQ(::read(started[0], &c, 1), 1);  // the child is past its read, on its way into the write
+    ::close(started[0]);
+    // It sleeps only in open() now: poll its state in /proc until it does (at most 10 s).
     bool blocked = false;
     for (int i = 0; i < 10000 && !blocked; ++i) {
       std::ifstream stat("/proc/" + std::to_string(child) + "/stat");
@@ -176,7 +182,6 @@ TEST_F(AtomicWrite, ASignalDuringTheWriteRemovesTheTemporary) {
       blocked = state == "S";
       if (!blocked) ::usleep(1000);
     }
-    ::usleep(20000);
     ::kill(child, sig);
     int status = 0;
     ASSERT_EQ(::waitpid(child, &status, 0), child);

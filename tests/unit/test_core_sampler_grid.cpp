@@ -1,10 +1,11 @@
 // The stratified sampler's numbers on the 2^-24 grid: Distribution1D's CDF lies on that grid, and the pmf it reports
-// is the probability sampling realises only for numbers uniform on it (Distribution1D.EveryGridValueOfUGivesExactly-
-// ThePmf). These tests check that the stratified numbers are: for every strata count, each grid value exactly as
-// often as any other over a uniformly random stratum and jitter; the quotient exact beyond the double product's
-// range; and the Sampler's own numbers, one lane and batch alike, on the grid. All are exact checks (no statistics,
-// no false failures). Before, (stratum + jitter) / n in float drew alternate grid values of spp 4's upper strata
-// 5/4 and 3/4 as often as they should, and put stratum 0's values between grid values.
+// is the probability sampling realises only for numbers uniform on it
+// (Distribution1D.EveryGridValueOfUGivesExactlyThePmf). These tests check that the stratified numbers are: for every
+// strata count, each grid value exactly as often as any other over a uniformly random stratum and jitter; the
+// quotient exact beyond the double product's range; and the Sampler's own numbers, one lane and batch alike, on the
+// grid. All are exact checks (no statistics, no false failures). Before, (stratum + jitter) / n in float drew
+// alternate grid values of spp 4's upper strata 5/4 and 3/4 as often as they should, and put stratum 0's values
+// between grid values.
 #include <gtest/gtest.h>
 
 #include <cmath>
