@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "app/bench_internal.h"
+#include "app/memory_check.h"
 #include "app/scene_loader.h"
 #include "core/atomic_write.h"
 #include "core/file_ext.h"
@@ -54,11 +55,16 @@ std::vector<BenchScene> default_scenes(const BenchOptions& o) {
   if (o.quick) return out;
   const fs::path assets = o.assets_dir.empty() ? src.parent_path() / "shared" / "assets" : fs::path(o.assets_dir);
   const char* models[] = {"ToyCar", "MetalRoughSpheresNoTextures"};
+  std::string missing;
   for (const char* m : models) {
-    const fs::path p = assets / "gltf" / m / "glTF" / (std::string(m) + ".gltf");
+    const fs::path rel = fs::path("gltf") / m / "glTF" / (std::string(m) + ".gltf"), p = assets / rel;
     std::error_code ec;
     if (fs::is_regular_file(p, ec)) out.push_back({m, p.string()});
+    else missing += (missing.empty() ? "" : ", ") + rel.string();
   }
+  if (!missing.empty())  // optional, but a run without them measures less than the docs describe: said, not silent
+    std::cerr << "lumis bench: warning: " << assets.string() << ": no " << missing
+              << "; measuring without (--assets names the shared assets folder)\n";
   return out;
 }
 
@@ -74,12 +80,24 @@ int run_bench(const BenchOptions& o) {
               << "\n";
     return 2;
   }
+  RenderSettings probe;  // every scene is measured at these settings
   try {  // reject bad override names before any work
-    RenderSettings probe;
+    set_bench_defaults(o, probe);
     apply_overrides(o.overrides, probe);
   } catch (const std::invalid_argument& e) {
     std::cerr << "lumis: " << e.what() << "\n";
     return 2;
+  }
+  {
+    // Fail before any work rather than with a bare std::bad_alloc minutes in, or being killed: as render does.
+    const size_t variants = o.overrides.integrator ? 1 : integrator_names().size();
+    const uint64_t need = bench_memory_estimate(probe.width, probe.height, bench_raw_rays(o), variants);
+    if (const std::string problem = memory_problem(need, probe.width, probe.height, "benchmark",
+                                                   "film, raw rays and query logs, beyond the scene");
+        !problem.empty()) {
+      std::cerr << "lumis: bench: " << problem << "\n";
+      return 1;
+    }
   }
   // Options that only shape the default scene list or the generated room: named when they cannot take effect.
   const bool large_listed = o.scenes.empty() || std::count(o.scenes.begin(), o.scenes.end(), kLargeSceneToken) > 0;
@@ -93,6 +111,11 @@ int run_bench(const BenchOptions& o) {
   report.cpu = cpu_model();
   report.cores = int(std::thread::hardware_concurrency());
   report.threads = o.overrides.threads ? *o.overrides.threads : report.cores;
+  if (report.threads > report.cores) {  // TBB would run no more: capped as render caps it, so that scaling is true
+    std::cerr << "lumis bench: warning: --threads " << report.threads << " is more than the " << report.cores
+              << " cores; measuring with " << report.cores << "\n";
+    report.threads = report.cores;
+  }
   report.repeat = std::max(1, o.repeat);
   report.quick = o.quick;
   report.load_average_start = load_average();

@@ -35,6 +35,17 @@ struct BenchRefusal : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Sets the benchmark's own defaults in s, which the command line's overrides then change: 256 x 256 pixels at
+/// 4 spp (32 x 32 at 1 with --quick).
+void set_bench_defaults(const BenchOptions& o, RenderSettings& s);
+
+/// Rays per kind that the raw benchmark traces (--raw-rays, or its default).
+size_t bench_raw_rays(const BenchOptions& o);
+
+/// Bytes that measuring one scene at width x height allocates at least, beyond the scene itself: a film, the raw
+/// benchmark's rays and each variant's query log (at least one camera ray per pixel).
+uint64_t bench_memory_estimate(int width, int height, size_t raw_rays, size_t variants);
+
 /// Everything `lumis bench` measures on one scene, with `threads` threads, into res (throws on a load error, and
 /// BenchRefusal before measuring when --json names a file the scene reads).
 void bench_scene(const BenchScene& which, const BenchOptions& o, int threads, SceneResult& res);

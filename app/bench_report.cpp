@@ -28,9 +28,9 @@ double pct(uint64_t part, uint64_t whole) { return whole ? 100.0 * double(part) 
 }  // namespace
 
 void print_bench_report(const BenchReport& r) {
-  std::printf("lumis bench: %d threads on %d cores (%s), median of %d%s; load average %.1f -> %.1f\n", r.threads,
-              r.cores, r.cpu.c_str(), r.repeat, r.quick ? ", quick" : "", r.load_average_start,
-              r.load_average_end);
+  std::printf("lumis bench: %d thread%s on %d cores (%s), median of %d%s; load average %.1f -> %.1f\n", r.threads,
+              r.threads == 1 ? "" : "s", r.cores, r.cpu.c_str(), r.repeat, r.quick ? ", quick" : "",
+              r.load_average_start, r.load_average_end);
   std::printf("Shared machines are noisy: compare the ratios (measured in the same run), not absolute rates.\n\n");
 
   std::printf("%-28s %10s %8s %8s %9s %7s %6s\n", "scene", "triangles", "load s", "BVH s", "peak MiB", "B/tri",

@@ -197,7 +197,8 @@ void register_compare_command(CLI::App& app, int& exit_code) {
   cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box)")->check(kNonEmpty);
   cmd->add_option("-o,--output", args->output, "Output folder (default: compare-<scene name>)")->check(kNonEmpty);
   cmd->add_option("--integrators", args->integrators, "Comma-separated variants to compare")->capture_default_str();
-  cmd->add_option("--reference", args->reference, "Reference image (EXR with R, G, B) instead of rendering one")
+  cmd->add_option("--reference", args->reference,
+                  "Reference image (EXR, or PNG decoded from sRGB; R, G, B or grey) instead of rendering one")
       ->check(kNonEmpty);
   cmd->add_option("--reference-spp", args->reference_spp,
                   "Samples per pixel of the rendered nee_mis reference (default: 16 x spp, at least 256)")
@@ -226,8 +227,8 @@ void register_bench_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "bench", "Measure samples/s and rays/s of every integrator against Embree's raw ray throughput");
   cmd->add_option("scenes", o.scenes,
-                  "Scene files, or @large for the generated 1M-triangle room (default: @large, the shipped scenes "
-                  "and the largest shared glTF models)")
+                  "Scene files, or @large for the generated 1M-triangle room (default: @large, cornell-sphere, "
+                  "veach-mis, night-lights and the largest shared glTF models where found)")
       ->check(kNonEmpty);
   cmd->add_option("--json", o.json_out, "Write the results as JSON to this file")->check(kNonEmpty);
   CLI::Option* repeat =
@@ -256,6 +257,10 @@ void register_bench_command(CLI::App& app, int& exit_code) {
   cmd->get_option("--time")->group("");
   cmd->get_option("--exposure")->group("");
   cmd->get_option("--spp")->description("Samples per pixel of every render (default 4; 1 with --quick)");
+  // Every scene is measured at bench's own square size, whatever its camera's aspect ratio.
+  cmd->get_option("--width")->description("Image width in pixels (default 256; 32 with --quick; alone: square)");
+  cmd->get_option("--height")->description("Image height in pixels (default 256; 32 with --quick; alone: square)");
+  cmd->get_option("--threads")->description("Worker threads (default: all cores; more than the cores are capped)");
   cmd->callback([a, cmd, repeat, &exit_code] {
     // --write-large-scene writes the room and exits: any other option but the room's size would go unused.
     if (!a->write_large.empty()) {
@@ -300,14 +305,14 @@ int run_cli(int argc, char** argv) {
     std::cerr << "lumis: " << problem << "\n";
     return 2;
   }
-  try {
+  try {  // --help's text is output too: lost to a full disk, it is no success either (checked below)
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    exit_code = app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    exit_code = app.exit(e);
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    exit_code = app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return 2;

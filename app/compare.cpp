@@ -59,7 +59,18 @@ int prepare(const CompareArgs& args, const std::string& scene_path, const fs::pa
     if (const std::string problem = output_folder_problem(dir); !problem.empty())
       throw UsageError("compare: -o " + dir.string() + ": " + problem + " (give a folder for the outputs)");
     names = parse_integrator_list(args.integrators);
+    std::vector<std::string> outputs = output_file_names(names);
+    if (args.reference.empty()) outputs.insert(outputs.end(), {"reference.exr", "reference.json"});
     std::error_code ec;
+    // A folder, pipe or device where a file goes would fail its write only after every render (or, for a pipe,
+    // be written to): refused up front, as render refuses its -o.
+    for (const std::string& f : outputs)
+      if (fs::exists(dir / f, ec) && !fs::is_regular_file(dir / f, ec)) {
+        const bool folder = fs::is_directory(dir / f, ec);
+        throw UsageError("compare: -o " + dir.string() + ": " + f + " there is " +
+                         (folder ? "a folder" : "not a regular file (a pipe, device or socket)") +
+                         ", where this run writes a file; remove it or give another -o");
+      }
     if (!args.reference.empty())
       for (const std::string& f : output_file_names(names))
         if (fs::equivalent(dir / f, args.reference, ec))
@@ -68,8 +79,6 @@ int prepare(const CompareArgs& args, const std::string& scene_path, const fs::pa
     scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera,
                                                     args.overrides.width && args.overrides.height});
     // Like render's -o: no file this run writes in DIR may be the scene file or a file the scene reads.
-    std::vector<std::string> outputs = output_file_names(names);
-    if (args.reference.empty()) outputs.insert(outputs.end(), {"reference.exr", "reference.json"});
     for (const std::string& f : outputs)
       if (const std::string file = scene_file_at((dir / f).string(), scene_path, *scene); !file.empty())
         throw UsageError("compare: -o " + dir.string() + ": this run writes " + f + " there, which is " + file +
@@ -129,9 +138,7 @@ int run_compare(const CompareArgs& args) {
   if (const int rc = prepare(args, scene_path, dir, scene, names, crop); rc != 0) return rc;
   // A rendered reference is nee_mis with these options (and they are in its cache key): an option nee_mis reads is
   // used then, whatever the variants.
-  std::vector<std::string> users = names;
-  if (args.reference.empty()) users.push_back("nee_mis");
-  for (const std::string& w : unused_overrides(args.overrides, users))
+  for (const std::string& w : unused_overrides(args.overrides, names, args.reference.empty()))
     std::cerr << "lumis compare: warning: " << w << "\n";
   if (!args.reference.empty() && args.reference_spp)
     std::cerr << "lumis compare: warning: --reference-spp only affects a rendered reference; "

@@ -96,6 +96,9 @@ std::string settings_summary(const CompareReport& r) {
       << " MIS heuristic";
   if (has_variant(r, "mis")) out << ", mis light probability " << fmt("%g", s.mis_light_probability);
   if (has_variant(r, "uniform")) out << ", uniform measure " << measure_name(s.uniform_measure);
+  // The thread count changes the images only at equal time (how many samples fit); the exposure only the PNGs.
+  if (r.equal_time) out << ", " << (s.threads > 0 ? std::to_string(s.threads) + " threads" : std::string("all cores"));
+  if (s.exposure != 0) out << ", exposure " << fmt("%g", s.exposure);
   return out.str();
 }
 
@@ -200,8 +203,11 @@ nlohmann::json report_json(const CompareReport& r) {
   if (r.equal_time) j["time_budget"] = r.time_budget;
   else j["spp"] = r.spp;
   j["settings"] = settings_json(r);
-  j["reference"] = {{"source", r.reference_source}, {"png", r.reference_png}, {"spp", r.reference_spp},
-                    {"hash", r.reference_hash}};
+  j["reference"] = {{"source", r.reference_source}, {"png", r.reference_png}};
+  if (r.reference_spp) {  // a rendered or cached reference; a given one has neither
+    j["reference"]["spp"] = r.reference_spp;
+    j["reference"]["hash"] = r.reference_hash;
+  }
   j["error_scale"] = r.error_scale;
   j["montage"] = r.montage;
   if (r.crop) j["crop"] = {r.crop->x, r.crop->y, r.crop->w, r.crop->h};

@@ -109,7 +109,7 @@ DiffMetrics compute_metrics(const Image& a, const Image& b, const DiffOptions& o
   m.psnr = !ok                ? nan
            : m.mse == 0       ? std::numeric_limits<double>::infinity()
            : m.psnr_peak <= 0 ? -std::numeric_limits<double>::infinity()
-                              : 10.0 * std::log10(m.psnr_peak * m.psnr_peak / m.mse);
+                              : 20.0 * std::log10(m.psnr_peak) - 10.0 * std::log10(m.mse);  // peak^2 may overflow
   // NaN too when a value is not finite, so that no threshold on it passes such an image.
   m.over_tolerance_percent = ok ? 100.0 * static_cast<double>(over) / (static_cast<double>(a.width) * a.height) : nan;
   return m;
@@ -158,16 +158,26 @@ ZTestResult z_test(const Image& a, const Image& b, const ZTestOptions& options, 
         // Each variance checked on its own: a negative one is corrupt data even where the other's would hide it.
         const double var_b = b.at(x, y, vb[k]), var_a = r.used_a_variance ? a.at(x, y, va[k]) : 0.0;
         const double var = var_a + var_b;
+        const auto reject_unscored = [&] {  // rejected without a p-value: remember the first such place
+          ++r.rejected;
+          if (r.unscored_x >= 0) return;
+          r.unscored_x = x;
+          r.unscored_y = y;
+          r.unscored_channel = k;
+        };
         if (!std::isfinite(xa) || !std::isfinite(xb) || !std::isfinite(var) || var_a < 0 || var_b < 0) {
           ++r.nonfinite;
-          ++r.rejected;
+          reject_unscored();
           continue;
         }
         const double d = xa - xb;
         if (var == 0) {
           // No noise estimate (e.g. a pixel that saw only background): demand agreement to float precision.
           ++r.zero_variance;
-          if (std::abs(d) > 1e-5 * std::max(std::abs(xa), std::abs(xb))) ++r.rejected;
+          if (std::abs(d) > 1e-5 * std::max(std::abs(xa), std::abs(xb))) {
+            ++r.zero_variance_rejected;
+            reject_unscored();
+          }
           continue;
         }
         const double p = std::erfc(std::abs(d) / std::sqrt(2.0 * var));

@@ -42,7 +42,7 @@ bool is_grey(const Image& img);
 /// Indices of the R, G and B channels (a grey image's Y channel three times); throws DiffError naming `name` when
 /// one is missing.
 std::vector<int> rgb_channels(const Image& img, const std::string& name);
-/// Throws DiffError naming both images when their sizes differ or either lacks R, G or B.
+/// Throws DiffError when the sizes differ (naming both images) or one lacks R, G or B (naming that one).
 void check_comparable(const Image& a, const Image& b, const DiffOptions& options);
 
 DiffMetrics compute_metrics(const Image& a, const Image& b, const DiffOptions& options = {});
@@ -65,6 +65,8 @@ struct ZTestResult {
   uint64_t nonfinite = 0;       ///< pixel-channels with a non-finite value or variance (always rejected)
   double min_p = 1;             ///< smallest two-sided p-value over pixel-channels with variance > 0
   int worst_x = -1, worst_y = -1, worst_channel = -1;  ///< where min_p occurred
+  uint64_t zero_variance_rejected = 0;  ///< of zero_variance, those rejected (|a - b| beyond 1e-5 relative)
+  int unscored_x = -1, unscored_y = -1, unscored_channel = -1;  ///< first rejection without a p-value (row order)
   double per_test_alpha = 0;    ///< Sidak: 1 - (1 - alpha)^(1 / tested)
   bool used_a_variance = false; ///< the test image's variance was added to the reference's
   bool passed = true;

@@ -32,9 +32,11 @@ nlohmann::json z_json(const ZTestResult& z, double alpha) {
           {"rejected", z.rejected},
           {"failing_fraction", z.failing_fraction()},
           {"zero_variance", z.zero_variance},
+          {"zero_variance_rejected", z.zero_variance_rejected},
           {"nonfinite", z.nonfinite},
           {"min_p", z.min_p},
           {"worst", {{"x", z.worst_x}, {"y", z.worst_y}, {"channel", z.worst_channel}}},
+          {"first_unscored", {{"x", z.unscored_x}, {"y", z.unscored_y}, {"channel", z.unscored_channel}}},
           {"used_test_variance", z.used_a_variance},
           {"passed", z.passed}};
 }
@@ -66,7 +68,9 @@ int run_diff(const DiffArgs& args) {
     }
   }
   if (!args.heatmap.empty()) {
-    if (const std::string problem = output_file_problem(args.heatmap); !problem.empty()) {
+    std::string problem = output_file_problem(args.heatmap, "heatmap.png");
+    if (problem.empty()) problem = output_format_problem(args.heatmap);  // before the images are read
+    if (!problem.empty()) {
       std::cerr << "lumis diff: " << args.heatmap << ": " << problem << "\n";
       return 2;
     }
@@ -140,8 +144,13 @@ int run_diff(const DiffArgs& args) {
       if (z->nonfinite)
         std::printf("  %llu pixel-channels rejected without a p-value: a value or variance is NaN, infinite or "
                     "negative\n", static_cast<unsigned long long>(z->nonfinite));
-      if (z->zero_variance) std::printf("  %llu pixel-channels with zero variance compared to 1e-5 relative\n",
-                                        static_cast<unsigned long long>(z->zero_variance));
+      if (z->zero_variance)
+        std::printf("  %llu pixel-channels with zero variance compared to 1e-5 relative: %llu rejected\n",
+                    static_cast<unsigned long long>(z->zero_variance),
+                    static_cast<unsigned long long>(z->zero_variance_rejected));
+      if (z->unscored_x >= 0)
+        std::printf("  first rejected without a p-value at (%d, %d) %c\n", z->unscored_x, z->unscored_y,
+                    "RGB"[z->unscored_channel]);
     }
     if (args.threshold)
       std::printf("threshold: %s %.6g %s %g: %s\n", args.metric.c_str(), value, args.metric == "psnr" ? ">=" : "<=",

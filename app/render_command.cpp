@@ -53,9 +53,8 @@ int run_render(const RenderArgs& args) {
     std::cerr << "lumis: " << out << ": " << problem << "\n";
     return 2;
   }
-  if (ext != ".exr" && ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".hdr") {
-    std::cerr << "lumis: " << out << ": unsupported output format '" << ext
-              << "' (use .exr, .png, .jpg/.jpeg or .hdr)\n";
+  if (const std::string problem = output_format_problem(out); !problem.empty()) {
+    std::cerr << "lumis: " << out << ": " << problem << "\n";
     return 2;
   }
   if (ext != ".exr" && (args.aov_albedo || args.aov_normal || args.aov_depth)) {

@@ -92,21 +92,25 @@ void apply_overrides(const RenderOverrides& o, Scene& scene) {
   }
 }
 
-std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::vector<std::string>& integrators) {
+std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::vector<std::string>& integrators,
+                                          bool nee_mis_reference) {
   std::vector<std::string> out;
   std::string list;
   for (const std::string& i : integrators) list += (list.empty() ? "" : ", ") + i;
+  if (nee_mis_reference) list += std::string(list.empty() ? "" : " and ") + "the reference (nee_mis)";
   // An option is reported when it is given and none of the integrators uses it.
   const auto unused = [&](bool given, const char* option, const char* applies_to,
                           std::initializer_list<const char*> users) {
     if (!given) return;
-    for (const std::string& i : integrators)
-      for (const char* u : users)
+    for (const char* u : users) {
+      if (nee_mis_reference && std::string(u) == "nee_mis") return;
+      for (const std::string& i : integrators)
         if (i == u) return;
+    }
     out.push_back(std::string(option) + " only affects " + applies_to + "; ignored for " + list);
   };
-  unused(o.mis_light_probability.has_value(), "--mis-light-probability", "--integrator mis", {"mis"});
-  unused(o.uniform_measure.has_value(), "--uniform-measure", "--integrator uniform", {"uniform"});
+  unused(o.mis_light_probability.has_value(), "--mis-light-probability", "the mis integrator", {"mis"});
+  unused(o.uniform_measure.has_value(), "--uniform-measure", "the uniform integrator", {"uniform"});
   unused(o.mis_heuristic.has_value(), "--mis-heuristic", "mis and nee_mis", {"mis", "nee_mis"});
   unused(o.light_selection.has_value(), "--light-selection", "light, mis and nee_mis", {"light", "mis", "nee_mis"});
   return out;

@@ -31,8 +31,10 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s);
 /// size, so that the scene fits a --width/--height of another aspect ratio too.
 void apply_overrides(const RenderOverrides& o, Scene& scene);
 /// Warnings for overrides given on the command line that none of the integrators uses (for example
-/// --mis-light-probability with nee_mis), one sentence each.
-std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::vector<std::string>& integrators);
+/// --mis-light-probability with nee_mis), one sentence each; nee_mis_reference: compare's rendered reference (nee_mis)
+/// uses them too, and is named as such.
+std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::vector<std::string>& integrators,
+                                          bool nee_mis_reference = false);
 
 /// The built-in default scene (scenes/cornell-sphere.json), found next to the sources or the executable.
 std::string default_scene_path();

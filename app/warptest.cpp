@@ -167,14 +167,12 @@ int run_warptest(const std::string& name, float param, uint64_t samples, const s
     return 2;
   }
   if (!out_png.empty()) {  // checked before the work, like render's -o
-    const std::string ext = lower_extension(out_png);
     if (const std::string problem = output_file_problem(out_png, "warp.png"); !problem.empty()) {
       err << "warptest: " << out_png << ": " << problem << '\n';
       return 2;
     }
-    if (ext != ".png" && ext != ".exr" && ext != ".jpg" && ext != ".jpeg" && ext != ".hdr") {
-      err << "warptest: " << out_png << ": unsupported picture format '" << ext
-          << "' (use .png, or .exr, .jpg/.jpeg, .hdr)\n";
+    if (const std::string problem = output_format_problem(out_png); !problem.empty()) {
+      err << "warptest: " << out_png << ": " << problem << '\n';
       return 2;
     }
   }

@@ -23,6 +23,23 @@ inline std::string lower_extension(const std::string& path) {
   return ext;
 }
 
+/// Why path's extension names no image format lumis writes (.exr, .png, .jpg/.jpeg, .hdr, in any case); empty when
+/// it names one. A name that is only an extension (".png") has none: it is a hidden file's name.
+inline std::string output_format_problem(const std::string& path) {
+  const auto is_format = [](const std::string& e) {
+    return e == ".exr" || e == ".png" || e == ".jpg" || e == ".jpeg" || e == ".hdr";
+  };
+  const std::string ext = lower_extension(path);
+  if (is_format(ext)) return "";
+  const std::string formats = "use .exr, .png, .jpg/.jpeg or .hdr";
+  if (!ext.empty()) return "unsupported image format '" + ext + "' (" + formats + ")";
+  const std::string name = std::filesystem::path(path).filename().string();
+  if (is_format(lower_extension("x" + name)))  // ".png": the name before the extension is missing
+    return "'" + name + "' is a name without an extension (it starts with the dot); give a name before it, such as "
+           "out" + name;
+  return "no extension to tell the image format by (" + formats + ")";
+}
+
 /// Why an output file could not be created at path, checked before any work is done: the path is a folder, or
 /// something other than a regular file (a pipe, device or socket, which the write's rename would replace with a
 /// file), its folder does not exist or is not a folder, or the folder is not writable. Empty when none of these holds

@@ -27,7 +27,7 @@ Kind kind_of(const std::string& path) {
   if (ext == ".hdr") return Kind::Hdr;
   if (ext == ".png") return Kind::Png;
   if (ext == ".jpg" || ext == ".jpeg") return Kind::Jpg;
-  fail(path, "unsupported output extension '" + ext + "' (expected .exr, .hdr, .png or .jpg)");
+  fail(path, output_format_problem(path));
 }
 
 /// Colour (first three channels, grey replicated) of pixel i, for formats that store only RGB.

@@ -237,6 +237,13 @@ TEST(CompareReport, SettingsHoldWhatDeterminesTheImages) {
   EXPECT_FALSE(t.contains("uniform_measure"));
   EXPECT_EQ(t["reference_file"], "ref.exr");
   EXPECT_FALSE(t.contains("reference_spp"));
+  // At equal time the thread count is in the line too (it decides how many samples fit); an exposure always is.
+  r.settings.threads = 2;
+  r.settings.exposure = -1.5f;
+  EXPECT_NE(report_markdown(r).find("MIS heuristic, mis light probability 0.5, 2 threads, exposure -1.5."),
+            std::string::npos) << report_markdown(r);
+  r.settings.threads = 0;
+  EXPECT_NE(report_html(r).find("mis light probability 0.5, all cores, exposure -1.5."), std::string::npos);
 }
 
 TEST(ComparePictures, MontageAndLogLogPlot) {

@@ -67,6 +67,16 @@ TEST(DiffMetrics, HandComputedValuesAndOptions) {
     EXPECT_NEAR(m.psnr_peak, 0.5, 1e-7);
     EXPECT_NEAR(m.psnr, 10 * std::log10(0.25 / ((0.25 + 0.04) / 6)), 1e-5);
   }
+  {  // ExtremePeaks: the square of the peak would overflow (1e320) or underflow (1e-340) a double
+    DiffOptions o;
+    o.psnr_peak = 1e160;
+    const DiffMetrics high = compute_metrics(tiny_a(), tiny_b(), o);
+    EXPECT_NEAR(high.psnr, 3200 - 10 * std::log10(high.mse), 1e-9);
+    EXPECT_NEAR(high.psnr, 3200 - 10 * std::log10((0.25 + 0.04) / 6), 1e-5);
+    o.psnr_peak = 1e-170;
+    const DiffMetrics low = compute_metrics(tiny_a(), tiny_b(), o);
+    EXPECT_NEAR(low.psnr, -3400 - 10 * std::log10(low.mse), 1e-9);
+  }
 }
 
 TEST(DiffMetrics, ThresholdsNonFiniteAndChannelOrder) {
@@ -210,13 +220,25 @@ TEST(DiffZTest, ReferenceVarianceAloneAndZeroVariance) {
   EXPECT_FALSE(r.used_a_variance);
   EXPECT_TRUE(r.passed);
   EXPECT_EQ(r.zero_variance, 1u);
+  EXPECT_EQ(r.zero_variance_rejected, 0u);
+  EXPECT_EQ(r.unscored_x, -1);
   a.at(0, 0, 0) = 0.25f * (1 + 1e-4f);
   r = z_test(a, b);
   EXPECT_FALSE(r.passed);
   EXPECT_EQ(r.rejected, 1u);
+  EXPECT_EQ(r.zero_variance_rejected, 1u);
+  EXPECT_EQ(r.unscored_x, 0);  // where: min_p, over scored pixel-channels only, cannot say
+  EXPECT_EQ(r.unscored_y, 0);
+  EXPECT_EQ(r.unscored_channel, 0);
   a.at(0, 0, 0) = 0.25f;
   b.at(1, 1, 4) = -1.0f;  // a negative variance is corrupt data, never a pass
-  EXPECT_FALSE(z_test(a, b).passed);
+  r = z_test(a, b);
+  EXPECT_FALSE(r.passed);
+  EXPECT_EQ(r.nonfinite, 1u);
+  EXPECT_EQ(r.zero_variance_rejected, 0u);
+  EXPECT_EQ(r.unscored_x, 1);  // variance.G of pixel (1, 1)
+  EXPECT_EQ(r.unscored_y, 1);
+  EXPECT_EQ(r.unscored_channel, 1);
   // Also when the tested image's own variance would make the sum positive (or zero), in either image.
   Image av(4, 4, {"R", "G", "B", "variance.R", "variance.G", "variance.B"});
   for (int y = 0; y < 4; ++y)

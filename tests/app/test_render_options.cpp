@@ -183,20 +183,27 @@ TEST(RenderOptions, OptionsNoChosenIntegratorReadsAreNamed) {
   o.light_selection = "power";
   EXPECT_EQ(unused_overrides(o, {"bsdf"}),
             (std::vector<std::string>{
-                "--mis-light-probability only affects --integrator mis; ignored for bsdf",
-                "--uniform-measure only affects --integrator uniform; ignored for bsdf",
+                "--mis-light-probability only affects the mis integrator; ignored for bsdf",
+                "--uniform-measure only affects the uniform integrator; ignored for bsdf",
                 "--mis-heuristic only affects mis and nee_mis; ignored for bsdf",
                 "--light-selection only affects light, mis and nee_mis; ignored for bsdf"}));
   EXPECT_EQ(unused_overrides(o, {"nee_mis"}),
             (std::vector<std::string>{
-                "--mis-light-probability only affects --integrator mis; ignored for nee_mis",
-                "--uniform-measure only affects --integrator uniform; ignored for nee_mis"}));
+                "--mis-light-probability only affects the mis integrator; ignored for nee_mis",
+                "--uniform-measure only affects the uniform integrator; ignored for nee_mis"}));
   EXPECT_TRUE(unused_overrides(o, {"uniform", "mis"}).empty());
   EXPECT_EQ(unused_overrides(o, {"light", "uniform"}),
             (std::vector<std::string>{
-                "--mis-light-probability only affects --integrator mis; ignored for light, uniform",
+                "--mis-light-probability only affects the mis integrator; ignored for light, uniform",
                 "--mis-heuristic only affects mis and nee_mis; ignored for light, uniform"}));
   EXPECT_TRUE(unused_overrides({}, {"bsdf"}).empty());
+  // compare's rendered reference is nee_mis: it uses --mis-heuristic and --light-selection, and is named apart.
+  EXPECT_EQ(unused_overrides(o, {"light", "bsdf"}, true),
+            (std::vector<std::string>{
+                "--mis-light-probability only affects the mis integrator; ignored for light, bsdf and the reference "
+                "(nee_mis)",
+                "--uniform-measure only affects the uniform integrator; ignored for light, bsdf and the reference "
+                "(nee_mis)"}));
 }
 
 // A scene file without a camera is framed for its film's aspect ratio; --width and --height of another ratio frame

@@ -22,7 +22,8 @@ import json, sys
 doc = json.load(open(sys.argv[1]))
 for k in ("cpu", "cores", "load_average_start"):
     assert k in doc["machine"], k
-assert doc["settings"]["quick"] is True and doc["settings"]["threads"] == 2
+assert doc["settings"]["quick"] is True
+assert doc["settings"]["threads"] == min(2, doc["machine"]["cores"]), doc["settings"]  # capped at the cores
 names = [s["name"] for s in doc["scenes"]]
 assert names == ["large", "cornell-sphere"], names
 variants = {"uniform", "bsdf", "light", "mis", "nee_mis"}
@@ -126,4 +127,21 @@ grep -q "no-such-folder" "$T/err" || fail "--assets message: $(cat "$T/err")"
 "$LUMIS" bench "$T/missing.json" --quick >"$T/out" 2>"$T/err"
 [ $? = 1 ] || fail "a missing scene should exit 1"
 grep -q "missing.json" "$T/err" || fail "missing-scene message: $(cat "$T/err")"
+
+# More threads than cores are capped, as render caps them, and said: the scaling figures divide by the threads.
+"$LUMIS" bench "$SCENE" --quick --integrator bsdf --threads 1024 --json "$T/t.json" >"$T/out" 2>"$T/err" ||
+  fail "bench --threads 1024: $(cat "$T/err")"
+grep -q "warning: --threads 1024 is more than the [0-9]* cores; measuring with" "$T/err" ||
+  fail "no warning for --threads beyond the cores: $(cat "$T/err")"
+python3 -c 'import json, sys
+d = json.load(open(sys.argv[1]))
+sys.exit(d["settings"]["threads"] != d["machine"]["cores"])' "$T/t.json" \
+  || fail "--threads 1024 not capped at the cores: $(head -c 300 "$T/t.json")"
+grep -q "TBB" "$T/err" && fail "TBB warned of more threads than cores: $(cat "$T/err")"
+
+# The default list without the shared glTF models (an --assets folder without them): measured, and said.
+"$LUMIS" bench --assets "$T" --repeat 1 --spp 1 --width 8 --large-triangles 100 --raw-rays 16 >"$T/out" 2>"$T/err" ||
+  fail "bench of the default list without the models: $(cat "$T/err")"
+grep -qF "warning: $T: no gltf/ToyCar/glTF/ToyCar.gltf, gltf/MetalRoughSpheresNoTextures/glTF/" "$T/err" ||
+  fail "no warning for the missing glTF models: $(cat "$T/err")"
 echo "ok"

@@ -56,6 +56,7 @@ for v in report["variants"]:
     assert [p["spp"] for p in c] == [1, 2, 4, 8], (v["name"], c)
     assert c[-1]["mse"] == v["mse"] and c[-1]["relmse"] == v["relmse"], (v["name"], c[-1], v)
 assert rel["uniform"] > 2 * rel["nee_mis"], rel
+assert sorted(report["reference"]) == ["hash", "png", "source", "spp"], report["reference"]  # a rendered one
 PY
 
 # The viewer's script runs: it marks the body ready and lists every variant plus the reference.
@@ -95,7 +96,9 @@ expect 0 "$LUMIS" compare "$SCENE" --width 32 --height 32 --max-depth 2 --time 0
 grep -q '"mode": "equal-time"' "$T/time/report.json" || fail "equal-time mode"
 grep -q '"time_budget": 0.05,' "$T/time/report.json" || fail "time budget not 0.05: $(grep time_budget "$T/time/report.json")"
 grep -q "\"source\": \"$D/reference.exr\"" "$T/time/report.json" || fail "given reference not recorded"
-grep -qF "warning: --mis-light-probability only affects --integrator mis; ignored for bsdf, light" "$T/err" ||
+python3 -c 'import json, sys; r = json.load(open(sys.argv[1]))["reference"]; sys.exit(sorted(r) != ["png", "source"])' \
+  "$T/time/report.json" || fail "a given reference has a spp or hash: $(grep -A4 '"reference"' "$T/time/report.json")"
+grep -qF "warning: --mis-light-probability only affects the mis integrator; ignored for bsdf, light" "$T/err" ||
   fail "no warning for an option no variant uses: $(cat "$T/err")"
 grep -q "light-selection" "$T/err" && fail "a warning for an option the light variant uses: $(cat "$T/err")"
 grep -qF "warning: --reference-spp only affects a rendered reference; ignored with --reference" "$T/err" ||
@@ -129,6 +132,16 @@ grep -q "a.png: exists and is not a folder" "$T/err" || fail "-o a file: $(cat "
 grep -qi "filesystem error" "$T/err" && fail "raw exception: $(cat "$T/err")"
 expect 2 "$LUMIS" compare "$SCENE" --width 16 --height 16 --spp 1 -o "$T/a.png/sub"
 grep -q "a.png is not a folder" "$T/err" || fail "-o through a file: $(cat "$T/err")"
+# A folder or a pipe where one of its files goes: refused up front (once it failed after every render).
+mkdir -p "$T/slot/bsdf.png" "$T/pipe"
+mkfifo "$T/pipe/reference.json"
+expect 2 "$LUMIS" compare "$SCENE" --width 8 --height 8 --spp 1 --integrators bsdf -o "$T/slot"
+grep -qF "compare: -o $T/slot: bsdf.png there is a folder, where this run writes a file" "$T/err" ||
+  fail "a folder where a file goes: $(cat "$T/err")"
+[ "$(ls -A "$T/slot")" = bsdf.png ] || fail "compare wrote beside the folder in its way: $(ls -A "$T/slot")"
+expect 2 "$LUMIS" compare "$SCENE" --width 8 --height 8 --spp 1 --integrators bsdf -o "$T/pipe"
+grep -qF "reference.json there is not a regular file (a pipe, device or socket)" "$T/err" ||
+  fail "a pipe where a file goes: $(cat "$T/err")"
 
 # --help: --integrator is not advertised (and still refused helpfully), --time and --spp are worded for compare.
 expect 0 "$LUMIS" compare --help
@@ -340,7 +353,8 @@ rendered_for "$T/moved/inc.json" "$T/in-inc.json" "cached by an older lumis, whi
 # A run that fails part way leaves no report of the earlier run beside images it replaced: the report goes first.
 SMALL8=(--width 8 --height 8 --spp 1 --reference-spp 4 --integrators bsdf,nee_mis -q)
 expect 0 "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/rerun"
-rm "$T/rerun/nee_mis.exr" && mkdir "$T/rerun/nee_mis.exr"   # nee_mis's image cannot be written now
+# nee_mis's image cannot be written now: a link into a missing folder (a folder in its place is refused up front)
+rm "$T/rerun/nee_mis.exr" && ln -s "$T/no-such-folder/nee_mis.exr" "$T/rerun/nee_mis.exr"
 expect 1 "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/rerun"
 for f in report.json report.md index.html; do [ ! -e "$T/rerun/$f" ] || fail "a failed rerun left the old $f"; done
 [ -s "$T/rerun/reference.exr" ] || fail "a failed rerun removed the cached reference"

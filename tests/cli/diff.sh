@@ -51,6 +51,13 @@ expect 1 "$LUMIS" diff "$T/direct.exr" "$T/a.exr" --z-test
 grep -q "z-test:.*FAIL" "$T/out" || fail "z-test summary: $(cat "$T/out")"
 expect 1 "$LUMIS" diff "$T/direct.exr" "$T/a.exr" --z-test --json
 grep -q '"min_p"' "$T/out" || fail "z-test JSON: $(cat "$T/out")"
+# At 1 spp every pixel's variance is 0: no p-values, so the rejections are counted apart and the first is placed.
+"$LUMIS" render "$SCENE" --width 8 --height 8 --spp 1 -q -o "$T/one1.exr" || fail "1-spp render"
+"$LUMIS" render "$SCENE" --width 8 --height 8 --spp 1 --seed 3 -q -o "$T/one2.exr" || fail "1-spp render, seed 3"
+expect 1 "$LUMIS" diff "$T/one1.exr" "$T/one2.exr" --z-test
+grep -q "^  192 pixel-channels with zero variance compared to 1e-5 relative: [1-9][0-9]* rejected$" "$T/out" &&
+  grep -q "^  first rejected without a p-value at ([0-7], [0-7]) [RGB]$" "$T/out" ||
+  fail "z-test without p-values: $(cat "$T/out")"
 
 # Errors (exit 2), each naming the files involved.
 expect 2 "$LUMIS" diff "$T/a.exr" "$T/narrow.exr"

@@ -116,4 +116,15 @@ if ! grep -q -i "sanitizer" "$T/err"; then
     fail "compare's message does not say how much memory: $(cat "$T/err")"
   [ ! -e "$T/mem/cmp" ] || fail "oversized compare left its folder"
 fi
+# And bench (once a bare std::bad_alloc minutes in, or the kernel's OOM killer): refused before any scene is loaded,
+# --json not written.
+(ulimit -v 4194304 && exec "$LUMIS" bench "$SCENE" --quick --width 16384 --json "$T/mem/bench.json") 2>"$T/err"
+code=$?
+if ! grep -q -i "sanitizer" "$T/err"; then
+  [ "$code" = 1 ] || fail "oversized bench exited $code, expected 1: $(cat "$T/err")"
+  grep -q "16384 x 16384 benchmark needs about .* GiB of memory" "$T/err" ||
+    fail "bench's message does not say how much memory: $(cat "$T/err")"
+  grep -q "repetition" "$T/err" && fail "oversized bench measured a scene: $(cat "$T/err")"
+  [ ! -e "$T/mem/bench.json" ] || fail "oversized bench wrote --json"
+fi
 echo "interrupt, time budget and memory checks passed"

@@ -69,9 +69,9 @@ has "write an .exr"
 # Options the chosen integrator does not use: rendered, with a warning that says so (also with -q).
 R=(render "$SCENE" --width 8 --height 8 --spp 1 -q)
 expect 0 "$LUMIS" "${R[@]}" --mis-light-probability 0.3 -o "$T/w.png"
-has "warning: --mis-light-probability only affects --integrator mis; ignored for nee_mis"
+has "warning: --mis-light-probability only affects the mis integrator; ignored for nee_mis"
 expect 0 "$LUMIS" "${R[@]}" --integrator bsdf --uniform-measure solid-angle --light-selection power -o "$T/w.png"
-has "--uniform-measure only affects --integrator uniform; ignored for bsdf"
+has "--uniform-measure only affects the uniform integrator; ignored for bsdf"
 has "--light-selection only affects light, mis and nee_mis; ignored for bsdf"
 expect 0 "$LUMIS" "${R[@]}" --integrator mis --mis-light-probability 0.3 -o "$T/w.png"
 [ ! -s "$T/err" ] || fail "a warning for options that apply: $(cat "$T/err")"
@@ -141,6 +141,15 @@ if [ -w /dev/full ]; then
   got=$?
   [ "$got" = 2 ] || { cat "$T/err"; fail "diff --json to a full disk: exit $got, expected 2"; }
   has "lumis: cannot write the standard output: No space left on device"
+  # --help too: its text is the output asked for (exit 1; diff's 2, since its 1 means the images differ).
+  for cmd in "" render compare bench warptest diff; do
+    "$LUMIS" $cmd --help >/dev/full 2>"$T/err"
+    got=$?
+    want=1
+    [ "$cmd" = diff ] && want=2
+    [ "$got" = "$want" ] || { cat "$T/err"; fail "lumis $cmd --help to a full disk: exit $got, expected $want"; }
+    has "lumis: cannot write the standard output: No space left on device"
+  done
 fi
 
 # bench: a scene that is not there fails the run before anything is measured, without printing empty tables.

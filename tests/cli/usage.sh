@@ -35,6 +35,23 @@ expect 2 "$LUMIS" bench --quick --repeat 0.5
 has "lumis: --repeat: expected a whole number in [1, 100], found 0.5"
 expect 2 "$LUMIS" warptest uniform_sphere --samples 1e6
 has "lumis: --samples: expected a whole number in [100000, 1000000000], found 1e6"
+# An image name whose extension is no format lumis writes, or that has none (".png" alone is a hidden file's name,
+# not a PNG; "out" once recursed until the stack ran out), refused before any work by render, diff and warptest.
+Q=(render "$SCENE" --width 4 --height 4 --spp 1 -q -o)
+expect 2 "$LUMIS" "${Q[@]}" "$T/.png"
+NO_EXT="is a name without an extension (it starts with the dot); give a name before it, such as"
+has "lumis: $T/.png: '.png' $NO_EXT out.png"
+expect 2 "$LUMIS" "${Q[@]}" "$T/out"
+has "lumis: $T/out: no extension to tell the image format by (use .exr, .png, .jpg/.jpeg or .hdr)"
+expect 2 "$LUMIS" "${Q[@]}" "$T/out.TIF"
+has "lumis: $T/out.TIF: unsupported image format '.tif' (use .exr, .png, .jpg/.jpeg or .hdr)"
+expect 2 "$LUMIS" diff "$T/missing-a.exr" "$T/missing-b.exr" --heatmap "$T/heat"
+has "lumis diff: $T/heat: no extension to tell the image format by"
+lacks "missing-a.exr"  # refused before the images are read
+expect 2 "$LUMIS" warptest cosine_hemisphere -o "$T/.EXR"
+has "warptest: $T/.EXR: '.EXR' $NO_EXT out.EXR"
+grep -q "chi-square" "$T/out" && fail "warptest sampled before refusing its picture's name"
+[ -z "$(ls -A "$T" | grep -v -e "^out$" -e "^err$")" ] || fail "a refused name was written: $(ls -A "$T")"
 [ ! -e "$T/r.png" ] || fail "a usage error rendered an image"
 for bad in 0 -2 1.5; do
   expect 2 "$LUMIS" compare "$SCENE" --reference-spp "$bad" -o "$T/cmp"
