@@ -42,8 +42,8 @@ void set_bench_defaults(const BenchOptions& o, RenderSettings& s);
 /// Rays per kind that the raw benchmark traces (--raw-rays, or its default).
 size_t bench_raw_rays(const BenchOptions& o);
 
-/// Bytes that measuring one scene at width x height allocates at least, beyond the scene itself: a film, the raw
-/// benchmark's rays and each variant's query log (at least one camera ray per pixel).
+/// Bytes that measuring one scene at width x height allocates, about, beyond the scene itself: a film, the raw
+/// benchmark's rays and each variant's query log (counted at one camera ray per pixel, its least).
 uint64_t bench_memory_estimate(int width, int height, size_t raw_rays, size_t variants);
 
 /// Everything `lumis bench` measures on one scene, with `threads` threads, into res (throws on a load error, and
