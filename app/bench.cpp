@@ -131,7 +131,9 @@ int run_bench(const BenchOptions& o) {
     std::error_code ec;
     if (!sc.generated && !fs::is_regular_file(sc.path, ec)) {
       std::cerr << "lumis: bench: " << sc.path
-                << (fs::is_directory(sc.path, ec) ? ": is a folder, expected a scene file\n" : ": file not found\n");
+                << (fs::is_directory(sc.path, ec) ? ": is a folder, expected a scene file" : ": file not found")
+                << (sc.path.rfind('@', 0) == 0 ? std::string(" (") + kLargeSceneToken + " is the generated scene)" : "")
+                << "\n";
       return 1;
     }
   }

@@ -1,5 +1,6 @@
 // `lumis bench` output: the table on stdout, with the targets evaluated (reported, never asserted: the
 // machine is shared and noisy). The same figures as JSON: app/bench_report_json.cpp.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -44,6 +45,11 @@ void print_bench_report(const BenchReport& r) {
     if (s.bytes_per_triangle > 0) std::snprintf(bpt, sizeof bpt, "%.0f", s.bytes_per_triangle);
     std::printf("%-28s %10zu %8.3f %8.3f %9.1f %7s %6zu\n", s.name.c_str(), s.triangles, s.load_seconds,
                 s.bvh_seconds, double(s.peak_rss) / (1 << 20), bpt, s.lights);
+  }
+  // Every scene failed: the other tables would be headers over nothing.
+  if (std::none_of(r.scenes.begin(), r.scenes.end(), [](const SceneResult& s) { return s.error.empty(); })) {
+    std::printf("\nNo scene was measured.\n");
+    return;
   }
 
   std::printf("\nRaw Embree, Mrays/s (wall clock), %d threads %15s %15s %15s %8s %8s\n", r.threads,

@@ -127,6 +127,16 @@ grep -q "no-such-folder" "$T/err" || fail "--assets message: $(cat "$T/err")"
 "$LUMIS" bench "$T/missing.json" --quick >"$T/out" 2>"$T/err"
 [ $? = 1 ] || fail "a missing scene should exit 1"
 grep -q "missing.json" "$T/err" || fail "missing-scene message: $(cat "$T/err")"
+"$LUMIS" bench @larg --quick >"$T/out" 2>"$T/err"
+[ $? = 1 ] || fail "a misspelt @large should exit 1"
+grep -qF "@larg: file not found (@large is the generated scene)" "$T/err" || fail "@larg message: $(cat "$T/err")"
+# A scene that fails to load: its error in the table, and no empty tables after it when no scene was measured.
+printf '{"version": 1, "shapes": [' >"$T/broken.json"
+"$LUMIS" bench "$T/broken.json" --quick >"$T/out" 2>"$T/err"
+[ $? = 1 ] || fail "a broken scene should exit 1"
+grep -q "^broken .*error: .*broken.json:1:" "$T/out" || fail "broken scene's row: $(cat "$T/out")"
+grep -q "^No scene was measured.$" "$T/out" || fail "no 'No scene was measured.': $(cat "$T/out")"
+grep -q "Raw Embree\|Targets" "$T/out" && fail "empty tables after a run that measured nothing: $(cat "$T/out")"
 
 # More threads than cores are capped, as render caps them, and said: the scaling figures divide by the threads.
 "$LUMIS" bench "$SCENE" --quick --integrator bsdf --threads 1024 --json "$T/t.json" >"$T/out" 2>"$T/err" ||
