@@ -68,9 +68,8 @@ int run_diff(const DiffArgs& args) {
     }
   }
   if (!args.heatmap.empty()) {
-    std::string problem = output_file_problem(args.heatmap, "heatmap.png");
-    if (problem.empty()) problem = output_format_problem(args.heatmap);  // before the images are read
-    if (!problem.empty()) {
+    // Before the images are read.
+    if (const std::string problem = image_output_problem(args.heatmap, "heatmap.png"); !problem.empty()) {
       std::cerr << "lumis diff: " << args.heatmap << ": " << problem << "\n";
       return 2;
     }

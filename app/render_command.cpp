@@ -49,11 +49,7 @@ int run_render(const RenderArgs& args) {
   std::string out = args.output;
   if (out.empty()) out = std::filesystem::path(scene_path).stem().string() + ".png";
   const std::string ext = lower_extension(out);  // .PNG as .png
-  if (const std::string problem = output_file_problem(out); !problem.empty()) {
-    std::cerr << "lumis: " << out << ": " << problem << "\n";
-    return 2;
-  }
-  if (const std::string problem = output_format_problem(out); !problem.empty()) {
+  if (const std::string problem = image_output_problem(out); !problem.empty()) {
     std::cerr << "lumis: " << out << ": " << problem << "\n";
     return 2;
   }

@@ -167,11 +167,7 @@ int run_warptest(const std::string& name, float param, uint64_t samples, const s
     return 2;
   }
   if (!out_png.empty()) {  // checked before the work, like render's -o
-    if (const std::string problem = output_file_problem(out_png, "warp.png"); !problem.empty()) {
-      err << "warptest: " << out_png << ": " << problem << '\n';
-      return 2;
-    }
-    if (const std::string problem = output_format_problem(out_png); !problem.empty()) {
+    if (const std::string problem = image_output_problem(out_png, "warp.png"); !problem.empty()) {
       err << "warptest: " << out_png << ": " << problem << '\n';
       return 2;
     }

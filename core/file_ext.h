@@ -69,4 +69,10 @@ inline std::string output_file_problem(const std::string& path, const std::strin
   return "";
 }
 
+/// output_file_problem, then output_format_problem: why an image cannot be written at path (empty when it can).
+inline std::string image_output_problem(const std::string& path, const std::string& example = "out.png") {
+  const std::string problem = output_file_problem(path, example);
+  return problem.empty() ? output_format_problem(path) : problem;
+}
+
 }  // namespace lumis
