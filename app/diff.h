@@ -71,6 +71,8 @@ struct ZTestResult {
   bool used_a_variance = false; ///< the test image's variance was added to the reference's
   bool passed = true;
   double failing_fraction() const { return tested ? static_cast<double>(rejected) / tested : 0.0; }
+  /// Pixel-channels with a p-value (variance > 0 and finite values); min_p is 1 when there are none.
+  uint64_t scored() const { return tested - zero_variance - nonfinite; }
 };
 
 /// Per pixel and channel z = (a - b) / sqrt(var), var = b's variance.R/G/B (+ a's when a has all three), two-sided

@@ -34,6 +34,7 @@ nlohmann::json z_json(const ZTestResult& z, double alpha) {
           {"zero_variance", z.zero_variance},
           {"zero_variance_rejected", z.zero_variance_rejected},
           {"nonfinite", z.nonfinite},
+          {"scored", z.scored()},
           {"min_p", z.min_p},
           {"worst", {{"x", z.worst_x}, {"y", z.worst_y}, {"channel", z.worst_channel}}},
           {"first_unscored", {{"x", z.unscored_x}, {"y", z.unscored_y}, {"channel", z.unscored_channel}}},
@@ -134,9 +135,11 @@ int run_diff(const DiffArgs& args) {
     if (m.nonfinite) std::printf("  %llu pixel-channels are NaN or infinite\n",
                                  static_cast<unsigned long long>(m.nonfinite));
     if (z) {
-      std::printf("z-test: %llu of %llu pixel-channels rejected (%.4g%%), min p %.3g",
+      std::printf("z-test: %llu of %llu pixel-channels rejected (%.4g%%)",
                   static_cast<unsigned long long>(z->rejected), static_cast<unsigned long long>(z->tested),
-                  100 * z->failing_fraction(), z->min_p);
+                  100 * z->failing_fraction());
+      if (z->scored() == 0) std::printf(", none has a p-value");  // every one had zero or non-finite variance
+      else std::printf(", min p %.3g", z->min_p);
       if (z->worst_x >= 0) std::printf(" at (%d, %d) %c", z->worst_x, z->worst_y, "RGB"[z->worst_channel]);
       std::printf(", Sidak level %.3g for alpha %g, variance of %s: %s\n", z->per_test_alpha, args.alpha,
                   z->used_a_variance ? "A + B" : "B", z->passed ? "pass" : "FAIL");

@@ -222,6 +222,7 @@ TEST(DiffZTest, ReferenceVarianceAloneAndZeroVariance) {
   EXPECT_EQ(r.zero_variance, 1u);
   EXPECT_EQ(r.zero_variance_rejected, 0u);
   EXPECT_EQ(r.unscored_x, -1);
+  EXPECT_EQ(r.scored(), 4u * 4 * 3 - 1);
   a.at(0, 0, 0) = 0.25f * (1 + 1e-4f);
   r = z_test(a, b);
   EXPECT_FALSE(r.passed);
@@ -235,6 +236,7 @@ TEST(DiffZTest, ReferenceVarianceAloneAndZeroVariance) {
   r = z_test(a, b);
   EXPECT_FALSE(r.passed);
   EXPECT_EQ(r.nonfinite, 1u);
+  EXPECT_EQ(r.scored(), 4u * 4 * 3 - 2);  // the zero-variance (0, 0) R and the corrupt (1, 1) G
   EXPECT_EQ(r.zero_variance_rejected, 0u);
   EXPECT_EQ(r.unscored_x, 1);  // variance.G of pixel (1, 1)
   EXPECT_EQ(r.unscored_y, 1);

@@ -48,16 +48,19 @@ cmp -s "$T/b.exr" "$T/b-copy.exr" || fail "the heatmap overwrote an input image"
 
 # Direct lighting only against full paths is biased: the z-test rejects it, with a useful summary.
 expect 1 "$LUMIS" diff "$T/direct.exr" "$T/a.exr" --z-test
-grep -q "z-test:.*FAIL" "$T/out" || fail "z-test summary: $(cat "$T/out")"
+grep -q "z-test:.*, min p [0-9.e-]* at ([0-9]*, [0-9]*) [RGB],.*FAIL" "$T/out" || fail "z-test summary: $(cat "$T/out")"
 expect 1 "$LUMIS" diff "$T/direct.exr" "$T/a.exr" --z-test --json
-grep -q '"min_p"' "$T/out" || fail "z-test JSON: $(cat "$T/out")"
+grep -q '"min_p"' "$T/out" && grep -q '"scored": [1-9]' "$T/out" || fail "z-test JSON: $(cat "$T/out")"
 # At 1 spp every pixel's variance is 0: no p-values, so the rejections are counted apart and the first is placed.
 "$LUMIS" render "$SCENE" --width 8 --height 8 --spp 1 -q -o "$T/one1.exr" || fail "1-spp render"
 "$LUMIS" render "$SCENE" --width 8 --height 8 --spp 1 --seed 3 -q -o "$T/one2.exr" || fail "1-spp render, seed 3"
 expect 1 "$LUMIS" diff "$T/one1.exr" "$T/one2.exr" --z-test
-grep -q "^  192 pixel-channels with zero variance compared to 1e-5 relative: [1-9][0-9]* rejected$" "$T/out" &&
+grep -q "^z-test: [1-9][0-9]* of 192 pixel-channels rejected ([0-9.]*%), none has a p-value, Sidak" "$T/out" &&
+  grep -q "^  192 pixel-channels with zero variance compared to 1e-5 relative: [1-9][0-9]* rejected$" "$T/out" &&
   grep -q "^  first rejected without a p-value at ([0-7], [0-7]) [RGB]$" "$T/out" ||
   fail "z-test without p-values: $(cat "$T/out")"
+expect 1 "$LUMIS" diff "$T/one1.exr" "$T/one2.exr" --z-test --json
+grep -q '"scored": 0,' "$T/out" || fail "z-test JSON without p-values: $(cat "$T/out")"
 
 # Errors (exit 2), each naming the files involved.
 expect 2 "$LUMIS" diff "$T/a.exr" "$T/narrow.exr"
