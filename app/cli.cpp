@@ -80,12 +80,13 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
           [](std::string& text) -> std::string {
             // 1 is left out: with light sampling alone, directions no light covers (indirect light) are never
             // drawn, and the estimate loses that light.
-            try {
-              // Tested as the float it is kept in: 0.99999999999 rounds to 1.
-              const float v = static_cast<float>(std::stod(text));
-              if (!(v >= 0 && v < 1)) return "expected a probability in [0, 1), found " + text;
-            } catch (const std::exception&) {
-            }
+            double v = 0;
+            if (!read_number(text, v)) return {};  // not a number: CLI11's conversion reports it
+            if (!(v >= 0 && v < 1)) return "expected a probability in [0, 1), found " + text;
+            // Tested as the float it is kept in too: 0.99999999999 rounds to 1.
+            if (!(static_cast<float>(v) < 1))
+              return "expected a probability in [0, 1), found " + text + ", which is 1 as the 32-bit float it is "
+                     "kept in";
             return {};
           },
           "in [0, 1)"));
@@ -127,7 +128,7 @@ void register_render_command(CLI::App& app, int& exit_code) {
 void register_warptest_command(CLI::App& app, int& exit_code) {
   struct Args {
     std::string name, out = "warptest.png";
-    float param = NAN;
+    double param = NAN;
     uint64_t samples = 1'000'000;
   };
   auto args = std::make_shared<Args>();

@@ -10,13 +10,17 @@ namespace lumis {
 /// An empty string where a file or camera name is expected (an unset shell variable, `-o ""`): a usage error, not
 /// "not given", which would render the default scene or write the default output file.
 std::string empty_problem(const std::string& text, const std::string& expected);
+/// Reads the whole of `text` as a number (as std::stod, but past the double range as +-inf, not an exception); false
+/// when it is not one.
+bool read_number(const std::string& text, double& value);
 /// A number that is not finite (NaN, inf); other text passes, for the option's own conversion to report.
 std::string finite_problem(const std::string& text);
 /// A number outside [lo, hi], described as `expected`; other text passes, as above.
 std::string range_problem(const std::string& text, double lo, double hi, const std::string& expected);
 /// Anything but a whole number in [lo, hi] ("1e3" and "1.5" included): "expected a whole number in [lo, hi], ...".
 std::string whole_problem(const std::string& text, long long lo, long long hi);
-/// The command line's first word that is not an option, when it names none of `commands`: "unknown command ...".
+/// The command line's first word that is not an option, when it names none of `commands`: "unknown command ...";
+/// an option other than --help or --version before the command: "'--spp' comes before the command 'render'; ...".
 std::string unknown_command_problem(int argc, const char* const* argv, const std::vector<std::string>& commands);
 
 }  // namespace lumis

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iomanip>
 #include <optional>
 #include <sstream>
 
@@ -139,7 +140,7 @@ std::vector<std::string> warptest_names() {
   return names;
 }
 
-int run_warptest(const std::string& name, float param, uint64_t samples, const std::string& out_png,
+int run_warptest(const std::string& name, double given, uint64_t samples, const std::string& out_png,
                  std::ostream& out, std::ostream& err) {
   const auto& entries = registry();
   const auto it = std::find_if(entries.begin(), entries.end(), [&](const WarpEntry& e) { return name == e.name; });
@@ -149,18 +150,25 @@ int run_warptest(const std::string& name, float param, uint64_t samples, const s
     err << '\n';
     return 2;
   }
-  if (!std::isnan(param)) {
+  if (!std::isnan(given)) {
     if (!it->param_help) {
       err << "warptest: " << name << " takes no --param\n";
       return 2;
     }
-    if (!(param > it->param_lo && (it->hi_closed ? param <= it->param_hi : param < it->param_hi))) {
+    // Checked as given and as the 32-bit float the warp is computed in (0.99999999 rounds to 1, 1e-50 to 0).
+    const auto inside = [&](double v) {
+      return v > it->param_lo && (it->hi_closed ? v <= it->param_hi : v < it->param_hi);
+    };
+    if (!inside(given) || !inside(static_cast<float>(given))) {
+      std::ostringstream found;  // enough digits to tell 1.0000001 from the bound 1
+      found << std::setprecision(9) << given;
+      if (inside(given)) found << ", which is " << static_cast<float>(given) << " as the 32-bit float it is used as";
       err << "warptest: --param: " << it->param_help << " of " << name << " must lie in (" << it->param_lo << ", "
-          << it->param_hi << (it->hi_closed ? "]" : ")") << ", found " << param << '\n';
+          << it->param_hi << (it->hi_closed ? "]" : ")") << ", found " << found.str() << '\n';
       return 2;
     }
   }
-  if (std::isnan(param)) param = it->default_param;
+  const float param = std::isnan(given) ? it->default_param : static_cast<float>(given);
   if (const std::string why = it->undecidable ? it->undecidable(param) : ""; !why.empty()) {
     err << "warptest: " << name << " with " << it->param_help << " = " << param << ": the test cannot decide: " << why
         << '\n';

@@ -68,6 +68,16 @@ TEST(Warptest, ParamOutsideTheDomainIsAUsageError) {
   }
   std::ostringstream out, err;
   EXPECT_EQ(run_warptest("ggx_cap", 1.0f, 100'000, "", out, err), 0) << out.str() << err.str();
+  // Checked as given, with enough digits to tell the value from the bound, and as the float the warp uses.
+  const std::tuple<const char*, double, const char*> near[] = {
+      {"ggx_heitz", 1.0000001, "must lie in (0, 1], found 1.0000001\n"},
+      {"spherical_cap", 0.99999999, "found 0.99999999, which is 1 as the 32-bit float it is used as"},
+      {"ggx_cap", 1e-50, "found 1e-50, which is 0 as the 32-bit float it is used as"}};
+  for (const auto& [name, param, says] : near) {
+    std::ostringstream o, e;
+    EXPECT_EQ(run_warptest(name, param, 100'000, "", o, e), 2) << name << " " << param;
+    EXPECT_NE(e.str().find(says), std::string::npos) << e.str();
+  }
 }
 
 // Alpha may be anywhere in (0, 1]. Lobes much narrower than the cells (alpha 1e-4: all samples in the top row, the

@@ -16,6 +16,11 @@ expect 2 "$LUMIS" frobnicate "$SCENE" --spp 1
 has "lumis: unknown command 'frobnicate'"
 expect 2 "$LUMIS"
 has "lumis: "
+# An option before the command belongs to it: CLI11 once called its value ('2') an unknown command.
+expect 2 "$LUMIS" --spp 2 render "$SCENE"
+has "lumis: '--spp' comes before the command 'render'; options go after it: lumis render --spp ..."
+expect 2 "$LUMIS" -q diff a.exr b.exr
+has "lumis: '-q' comes before the command 'diff'; options go after it: lumis diff -q ..."
 
 R=(render "$SCENE" --width 4 --height 4 --spp 1 -q -o "$T/r.png")
 for bad in 1e3 1.5 ten -1 0 1073741825; do
@@ -31,6 +36,17 @@ expect 2 "$LUMIS" "${R[@]}" --exposure 65
 has "lumis: --exposure: expected a number in [-64, 64], found 65"
 expect 2 "$LUMIS" "${R[@]}" --time -1
 has "lumis: --time: expected a number of seconds in [0, 1e7], found -1"
+# Beyond the double range: CLI11 reads +-inf, which the checks once let through (exit 0, a white or black image).
+for opt in --exposure --time --mis-light-probability; do
+  expect 2 "$LUMIS" "${R[@]}" $opt -1e400
+  has "lumis: $opt: expected a finite number, found -1e400"
+done
+expect 2 "$LUMIS" diff a.exr b.exr --alpha 1e400
+has "lumis: --alpha: expected a finite number, found 1e400"
+[ ! -e "$T/r.png" ] || fail "a refused render wrote r.png"
+# Kept as a 32-bit float, 0.99999999999 is 1, outside [0, 1): the message says so.
+expect 2 "$LUMIS" "${R[@]}" --mis-light-probability 0.99999999999
+has "lumis: --mis-light-probability: expected a probability in [0, 1), found 0.99999999999, which is 1 as the 32-bit float"
 expect 2 "$LUMIS" bench --quick --repeat 0.5
 has "lumis: --repeat: expected a whole number in [1, 100], found 0.5"
 expect 2 "$LUMIS" warptest uniform_sphere --samples 1e6
