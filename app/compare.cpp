@@ -77,7 +77,7 @@ int prepare(const CompareArgs& args, const std::string& scene_path, const fs::pa
           throw UsageError("compare: --reference " + args.reference + " is the " + f + " this run writes in " +
                            dir.string() + "; copy it elsewhere or give another -o");
     scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera,
-                                                    args.overrides.width && args.overrides.height});
+                                                    args.overrides.width || args.overrides.height});
     // Like render's -o: no file this run writes in DIR may be the scene file or a file the scene reads.
     for (const std::string& f : outputs)
       if (const std::string file = scene_file_at((dir / f).string(), scene_path, *scene); !file.empty())

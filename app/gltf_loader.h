@@ -26,7 +26,7 @@ struct GltfMaterial {
 
 /// A perspective camera node of the scene.
 struct GltfCamera {
-  std::string name;                     ///< the node's name, else its camera's, else empty
+  std::string name;                     ///< the node's own name (empty when it has none)
   std::string camera_name;              ///< the camera object's own name (exporters often name it apart from the node)
   std::string path;                     ///< the node's glTF path ("nodes[3]")
   Camera camera;                        ///< world space (after `transform`)

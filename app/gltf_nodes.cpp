@@ -141,7 +141,7 @@ void set_camera(Context& ctx, GltfScene& scene, const tinygltf::Node& node, cons
     ctx.fail(at, "camera node transform is degenerate");
   std::optional<float> aspect;
   if (p.aspectRatio > 0) aspect = static_cast<float>(p.aspectRatio);
-  scene.cameras.push_back({!node.name.empty() ? node.name : c.name, c.name, at, cam, aspect});
+  scene.cameras.push_back({node.name, c.name, at, cam, aspect});
   if (scene.cameras.size() == 1) {  // the first perspective camera is the default
     scene.camera = cam;
     scene.camera_aspect = aspect;

@@ -22,20 +22,23 @@ constexpr int kGltfImageWidth = 512;
 
 /// The camera `wanted` names (SceneLoadOptions::camera) among the file's; throws std::invalid_argument listing them.
 const GltfCamera& choose_camera(const GltfScene& gltf, const std::string& wanted, const std::string& path) {
-  const bool number = wanted.find_first_not_of("0123456789") == std::string::npos;
-  // By number, or by the node's name, else the camera object's (Blender names them apart: "Camera.001" / "Camera").
-  for (size_t i = 0; i < gltf.cameras.size(); ++i)
-    if (number ? wanted == std::to_string(i) : wanted == gltf.cameras[i].name) return gltf.cameras[i];
-  std::vector<size_t> by_camera;  // one camera object may sit in several nodes: then its name does not say which
-  for (size_t i = 0; i < gltf.cameras.size() && !number; ++i)
-    if (wanted == gltf.cameras[i].camera_name) by_camera.push_back(i);
-  if (by_camera.size() == 1) return gltf.cameras[by_camera[0]];
-  if (by_camera.size() > 1) {
+  // By number; else by the node's own name, else the camera object's (Blender names them apart: "Camera.001" /
+  // "Camera"). A name that several nodes share, or a camera object several nodes hold, does not say which.
+  if (wanted.find_first_not_of("0123456789") == std::string::npos)
+    for (size_t i = 0; i < gltf.cameras.size(); ++i)
+      if (wanted == std::to_string(i)) return gltf.cameras[i];
+  for (const bool by_node : {true, false}) {
+    std::vector<size_t> found;
+    for (size_t i = 0; i < gltf.cameras.size(); ++i)
+      if (wanted == (by_node ? gltf.cameras[i].name : gltf.cameras[i].camera_name)) found.push_back(i);
+    if (found.size() == 1) return gltf.cameras[found[0]];
+    if (found.empty()) continue;
     std::ostringstream nodes;
-    for (size_t i : by_camera)
-      nodes << (i == by_camera.front() ? "" : ", ") << i << " (" << gltf.cameras[i].path << ")";
-    throw std::invalid_argument("--camera: camera '" + wanted + "' of " + path + " is in several nodes: " +
-                                nodes.str() + "; give the number or the node's name");
+    for (size_t i : found) nodes << (i == found.front() ? "" : ", ") << i << " (" << gltf.cameras[i].path << ")";
+    throw std::invalid_argument("--camera: " + std::string(by_node ? "several camera nodes of " : "camera '") +
+                                (by_node ? path + " are named '" + wanted + "'" : wanted + "' of " + path +
+                                 " is in several nodes") + ": " + nodes.str() + "; give the number" +
+                                (by_node ? "" : " or the node's name"));
   }
   std::ostringstream list;
   for (size_t i = 0; i < gltf.cameras.size(); ++i) {
@@ -83,7 +86,9 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadO
     // Clamped before rounding: a tiny ratio (1e-30) overflows lround's range, which once gave a height of 1.
     const double height = double(kGltfImageWidth) / *gltf.camera_aspect;
     scene->settings.height = static_cast<int>(std::lround(std::clamp(height, 1.0, double(kMaxResolution))));
-    if (!(height >= 0.5 && height < kMaxResolution + 0.5) && !options.size_given)  // the image lacks its shape
+    const bool clamped = !(height >= 0.5 && height < kMaxResolution + 0.5);
+    if (clamped) scene->settings.aspect = *gltf.camera_aspect;  // what --width or --height alone then keeps
+    if (clamped && !options.size_given)  // the image lacks its shape
       std::cerr << path << ": warning: " << (camera_at.empty() ? std::string("the camera") : camera_at)
                 << "'s aspectRatio " << *gltf.camera_aspect << " needs an image of " << kGltfImageWidth << " x "
                 << height << " pixels; its height is clamped to 1..." << kMaxResolution

@@ -61,7 +61,7 @@ int run_render(const RenderArgs& args) {
   std::unique_ptr<Scene> scene;
   try {
     scene = load_scene(scene_path, SceneLoadOptions{args.overrides.camera,
-                                                    args.overrides.width && args.overrides.height});
+                                                    args.overrides.width || args.overrides.height});
     apply_overrides(args.overrides, *scene);
     scene->update_light_selector();
   } catch (const SceneError& e) {

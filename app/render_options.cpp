@@ -20,15 +20,17 @@ void apply_overrides(const RenderOverrides& o, RenderSettings& s) {
   // One of the two alone keeps the scene's aspect ratio (a smaller or larger render of the same picture); where the
   // other side would leave 1...kMaxImageSide pixels, the picture cannot be kept, and clamping it silently would
   // squash it: a usage error that says so.
-  const double aspect = double(s.width) / double(s.height);
+  const double aspect = s.aspect > 0 ? s.aspect : double(s.width) / double(s.height);
+  char ratio[64];  // as the scene states it: its pixel size, or the camera's own ratio that the size is clamped from
+  if (s.aspect > 0) std::snprintf(ratio, sizeof ratio, "camera's aspect ratio %g", s.aspect);
+  else std::snprintf(ratio, sizeof ratio, "scene's %d x %d aspect ratio", s.width, s.height);
   const auto follow = [&](double v, const char* given, int n, const char* side, const char* other) {
     if (std::lround(v) < 1 || std::lround(v) > kMaxImageSide) {
       char need[32];
       if (v >= 1) std::snprintf(need, sizeof need, "%ld", std::lround(v));  // the number tested, rounded alike
       else std::snprintf(need, sizeof need, "%.2g", v);
-      throw std::invalid_argument(std::string(given) + " " + std::to_string(n) + " alone keeps the scene's " +
-                                  std::to_string(s.width) + " x " + std::to_string(s.height) + " aspect ratio, " +
-                                  "which needs a " + side + " of " + need + " pixels, outside 1 to " +
+      throw std::invalid_argument(std::string(given) + " " + std::to_string(n) + " alone keeps the " + ratio +
+                                  ", which needs a " + side + " of " + need + " pixels, outside 1 to " +
                                   std::to_string(kMaxImageSide) + ": give " + other + " as well");
     }
     return static_cast<int>(std::lround(v));

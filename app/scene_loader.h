@@ -13,8 +13,8 @@ struct SceneLoadOptions {
   /// A glTF file's camera to render through: its position in the file's list of perspective camera nodes (0 is the
   /// default, the first in depth-first file order) or its node's (else camera's) name. Empty: the default.
   std::string camera;
-  /// Both --width and --height were given: the image's shape is the user's, so a glTF camera's aspect ratio that
-  /// does not fit in an image is not worth a warning.
+  /// --width or --height was given: both make the shape the user's, and one alone keeps a glTF camera's aspect ratio
+  /// that the 512-wide default cannot (or is refused), so that ratio's clamp is not worth a warning.
   bool size_given = false;
 };
 

@@ -30,6 +30,7 @@ struct RenderSettings {
   UniformMeasure uniform_measure = UniformMeasure::ThetaPhi;
   float mis_light_probability = 0.5f;  ///< `mis`: probability of the light strategy at a vertex (c_l)
   int width = 512, height = 512;
+  double aspect = 0;         ///< width / height meant, where the pixel size is clamped short of it; 0 = width / height
   double time_budget = 0;    ///< seconds; 0 = none
   int threads = 0;           ///< 0 = all cores
   bool aov_albedo = false, aov_normal = false, aov_depth = false, aov_variance = true;

@@ -246,22 +246,33 @@ TEST_F(GltfFiles, FactorsClampedAtLoadGlbEmptyUriAndSharedCameraNames) {
     EXPECT_NE(std::string(e.what()).find("byteLength"), std::string::npos) << e.what();
   }
 
-  // Camera object 0, named "Lens", in nodes 1 and 2: "Lens" is ambiguous; the node names and numbers are not.
+  // Camera object 0, named "Lens", in nodes 1 to 6: "Lens" is ambiguous, even though node 3 has no name of its own
+  // (it once took the object's and was chosen silently), and so is "Twin", the name of two nodes; the other node
+  // names and the numbers are not. A node named "9" is found by name: there is no camera 9.
   const std::string cams =
       R"(,"cameras":[{"name":"Lens","type":"perspective","perspective":{"yfov":0.8,"znear":0.01}}])";
-  std::string text = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1,2]}],"nodes":[{"mesh":0},)"
+  std::string text = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1,2,3,4,5,6]}],"nodes":[{"mesh":0},)"
                      R"({"name":"Left","camera":0,"translation":[0,0,3]},)"
-                     R"({"name":"Right","camera":0,"translation":[1,0,3]}],"meshes":[{"primitives":[)" +
+                     R"({"name":"Right","camera":0,"translation":[1,0,3]},)"
+                     R"({"camera":0,"translation":[2,0,3]},{"name":"9","camera":0,"translation":[3,0,3]},)"
+                     R"({"name":"Twin","camera":0,"translation":[4,0,3]},)"
+                     R"({"name":"Twin","camera":0,"translation":[5,0,3]}],"meshes":[{"primitives":[)" +
                      std::string(Triangle::prim) + R"(]}],"buffers":[)" + t.bin.buffer_json() + R"(],"bufferViews":)" +
                      t.views + R"(,"accessors":)" + t.accessors + cams + "}";
   const std::string two = write("cams.gltf", text);
   EXPECT_EQ(load_scene(two, SceneLoadOptions{"Right"})->camera.from, Vec3(1, 0, 3));
-  try {
-    load_scene(two, SceneLoadOptions{"Lens"});
-    ADD_FAILURE() << "an ambiguous camera name accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("camera 'Lens' of " + two + " is in several nodes: 0 (nodes[1]), 1 "
-                                         "(nodes[2]); give the number or the node's name"),
-              std::string::npos) << e.what();
+  EXPECT_EQ(load_scene(two, SceneLoadOptions{"2"})->camera.from, Vec3(2, 0, 3));
+  EXPECT_EQ(load_scene(two, SceneLoadOptions{"9"})->camera.from, Vec3(3, 0, 3));
+  const std::pair<const char*, std::string> ambiguous[] = {
+      {"Lens", "camera 'Lens' of " + two + " is in several nodes: 0 (nodes[1]), 1 (nodes[2]), 2 (nodes[3]), 3 "
+               "(nodes[4]), 4 (nodes[5]), 5 (nodes[6]); give the number or the node's name"},
+      {"Twin", "several camera nodes of " + two + " are named 'Twin': 4 (nodes[5]), 5 (nodes[6]); give the number"}};
+  for (const auto& [name, says] : ambiguous) {
+    try {
+      load_scene(two, SceneLoadOptions{name});
+      ADD_FAILURE() << "an ambiguous camera name accepted: " << name;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
   }
 }

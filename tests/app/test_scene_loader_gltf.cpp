@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "app/render_overrides.h"
 #include "tests/app/gltf_synthetic.h"
 #include "tests/app/scene_loader_test_util.h"
 
@@ -77,8 +79,24 @@ TEST_F(SceneLoader, GltfCameraExtremeAspectRatioClampsTheHeight) {
     EXPECT_NE(err.find("warning: nodes[1]'s aspectRatio "), std::string::npos) << aspect << ": " << err;
     EXPECT_NE(err.find("its height is clamped to 1...16384"), std::string::npos) << aspect << ": " << err;
     testing::internal::CaptureStderr();
-    load_scene(file, SceneLoadOptions{"", true});  // --width and --height both given: the shape is the user's
+    load_scene(file, SceneLoadOptions{"", true});  // --width or --height given: the shape is the user's
     EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << aspect;
+    // --width alone keeps the camera's ratio, not the clamped 512 x 16384 (a 2 x 64 image at 1e-3, it once was).
+    RenderOverrides two_wide;
+    two_wide.width = 2;
+    RenderSettings s = scene->settings;
+    if (std::string(aspect) == "1e-3") {
+      apply_overrides(two_wide, s);
+      EXPECT_EQ(s.height, 2000);
+    } else {  // 1e-30 and 1e30: no height in 1...16384 keeps it; said in the camera's terms
+      try {
+        apply_overrides(two_wide, s);
+        ADD_FAILURE() << aspect << ": " << s.width << " x " << s.height;
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("--width 2 alone keeps the camera's aspect ratio 1e"),
+                  std::string::npos) << e.what();
+      }
+    }
   }
   testing::internal::CaptureStderr();
   load_scene(kAssets + "/gltf/MultiUVTest/glTF/MultiUVTest.gltf");  // 16:9, as asked: no warning

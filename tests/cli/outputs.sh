@@ -12,6 +12,7 @@ set -uo pipefail
 LUMIS=${1:?usage: outputs.sh path/to/lumis}
 source "$(dirname "$0")/common.bash"
 has() { grep -qF -- "$1" "$T/err" || { cat "$T/err"; fail "stderr lacks '$1'"; }; }
+lacks() { ! grep -qF -- "$1" "$T/err" || { cat "$T/err"; fail "stderr has '$1'"; }; }
 
 # A render that would take hours if it started: each case must fail at once, without a temporary file.
 LONG=(render "$SCENE" --width 64 --height 64 --spp 100000000 -q)
@@ -189,6 +190,11 @@ json.dump({"materials": mat, "shapes": [{"type": "gltf", "file": "tri.gltf"}],
 open(d + "/buf.png", "wb").write(pos)  # an external buffer named like an image
 gltf["buffers"][0]["uri"] = "buf.png"
 json.dump(gltf, open(d + "/ext.gltf", "w"))
+gltf["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(pos).decode()
+gltf["scenes"][0]["nodes"] = [0, 1]  # a camera whose aspectRatio no 512-wide image holds
+gltf["nodes"].append({"camera": 0, "translation": [0.3, 0.3, 3]})
+gltf["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.01, "aspectRatio": 0.001}}]
+json.dump(gltf, open(d + "/tall.gltf", "w"))
 PY
 oiiotool --pattern constant:color=0.5,0.5,0.5 8x4 3 -d half -o "$T/own/env.exr" &&
   oiiotool --pattern constant:color=0.2,0.4,0.6 4x4 3 -d uint8 -o "$T/own/tex.png" &&
@@ -207,6 +213,11 @@ for pair in "env.json env.exr" "env.json env-link.exr" "tex.json tex.png" "inc.j
   rm -f "$T/own/before"
 done
 expect 0 "$LUMIS" render "$T/own/tri.gltf" -o "$T/own/other.png" --width 8 --spp 1 -q
+# --width alone keeps the camera's aspectRatio 0.001 (2 x 2000), not the 512 x 16384 that the default was clamped
+# to; the image then has the camera's shape, so the clamp's warning is not given.
+expect 0 "$LUMIS" render "$T/own/tall.gltf" -o "$T/own/tall.png" --width 2 --spp 1 -q
+lacks "aspectRatio"
+oiiotool --info "$T/own/tall.png" | grep -q " 2 x 2000," || fail "tall.png: $(oiiotool --info "$T/own/tall.png")"
 # bench --json naming the scene file is refused before anything is measured; naming a file the scene reads (known
 # once it has loaded) stops the run there, before that scene is measured.
 cp "$T/own/inc.json" "$T/own/inc-before.json" && cp "$T/own/gtex.png" "$T/own/gtex-before.png" ||

@@ -46,7 +46,7 @@ has "lumis: --alpha: expected a finite number, found 1e400"
 [ ! -e "$T/r.png" ] || fail "a refused render wrote r.png"
 # Kept as a 32-bit float, 0.99999999999 is 1, outside [0, 1): the message says so.
 expect 2 "$LUMIS" "${R[@]}" --mis-light-probability 0.99999999999
-has "lumis: --mis-light-probability: expected a probability in [0, 1), found 0.99999999999, which is 1 as the 32-bit float"
+has "lumis: --mis-light-probability: expected a probability in [0, 1), found 0.99999999999, which is 1 as the 32-bit"
 expect 2 "$LUMIS" bench --quick --repeat 0.5
 has "lumis: --repeat: expected a whole number in [1, 100], found 0.5"
 expect 2 "$LUMIS" warptest uniform_sphere --samples 1e6
