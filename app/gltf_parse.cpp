@@ -95,6 +95,18 @@ void check_depth(const Context& ctx, const std::string& text, bool binary) {
                      "); lumis reads at most " + std::to_string(kMaxJsonDepth));
 }
 
+/// JSON that does not parse, at its line:column and in lumis's words (tinygltf's message is nlohmann's, with its
+/// prefix and the raw bytes it last read).
+[[noreturn]] void fail_syntax(const Context& ctx, const std::string& text, bool binary) {
+  try {
+    (void)Json::parse(text);
+  } catch (const Json::parse_error& e) {
+    throw SceneError(ctx.file, json_line_column(text, e.byte == 0 ? 0 : e.byte - 1),
+                     std::string(binary ? "invalid JSON chunk: " : "invalid JSON: ") + json_syntax_detail(e.what()));
+  }
+  ctx.fail("", "invalid JSON");  // not reached: the text failed to parse a moment ago
+}
+
 /// Where tinygltf rejects a file, name the cause in glTF terms when it is one of the likely ones above: a version
 /// other than 2.0 (the structure of 1.0 differs) or a missing or short buffer file. Returns when it is none of them.
 void explain_rejection(const Context& ctx, const std::string& path, bool binary) {
@@ -134,6 +146,7 @@ void parse_file(Context& ctx, const std::string& path) {
   PlusUris plus;
   {  // one parse for lumis's own checks and the '+' URIs, freed before tinygltf parses the text into its model
     const Json doc = text ? Json::parse(*text, nullptr, /*allow_exceptions=*/false) : Json();
+    if (text && doc.is_discarded()) fail_syntax(ctx, *text, binary);
     check_json(ctx, doc);
     plus = plus_uris(ctx, doc);
   }

@@ -1,5 +1,6 @@
 // JSON text to a document: nlohmann's SAX parser, with byte positions for syntax errors turned into line:column
 // and duplicate keys rejected (nlohmann's parse() keeps the last silently).
+#include <cstdio>
 #include <string>
 #include <string_view>
 #include <unordered_set>
@@ -104,8 +105,12 @@ class DomBuilder : public nlohmann::json_sax<Json> {
   }
 };
 
-// "[json.exception.parse_error.101] parse error at line 3, column 7: syntax error ..." -> "syntax error ...".
-std::string strip_nlohmann_prefix(std::string m) {
+}  // namespace
+
+// "[json.exception.parse_error.101] parse error at line 3, column 7: syntax error ..." -> "syntax error ...", with
+// what nlohmann quotes ("last read: '...'") made printable: the raw bytes of ill-formed UTF-8 or control characters
+// would garble the terminal.
+std::string json_syntax_detail(std::string m) {
   if (m.rfind("[json.exception.", 0) == 0) {
     const size_t close = m.find("] ");
     if (close != std::string::npos) m = m.substr(close + 2);
@@ -115,10 +120,26 @@ std::string strip_nlohmann_prefix(std::string m) {
     if (colon != std::string::npos) m = m.substr(colon + 2);
   }
   if (m.rfind("number overflow", 0) == 0) m += " (numbers must be finite)";
-  return m;
+  std::string out;
+  for (size_t i = 0; i < m.size(); ++i) {
+    const auto c = static_cast<unsigned char>(m[i]);
+    // A well-formed UTF-8 sequence is kept whole: its lead byte's count of continuation bytes follows it.
+    const size_t more = c >= 0xc2 && c <= 0xdf ? 1 : c >= 0xe0 && c <= 0xef ? 2 : c >= 0xf0 && c <= 0xf4 ? 3 : 0;
+    size_t k = 0;
+    while (more && k < more && i + 1 + k < m.size() && (static_cast<unsigned char>(m[i + 1 + k]) & 0xc0) == 0x80) ++k;
+    if (more && k == more) {
+      out.append(m, i, 1 + more);
+      i += more;
+    } else if (c >= 0x20 && c < 0x7f) {
+      out += m[i];
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", c);
+      out += hex;
+    }
+  }
+  return out;
 }
-
-}  // namespace
 
 Json parse_json_text(const std::string& text, const std::string& file) {
   DomBuilder builder;
@@ -127,7 +148,7 @@ Json parse_json_text(const std::string& text, const std::string& file) {
     throw SceneError(file, builder.duplicate_pointer, "duplicate key (each key may appear once per object)");
   // nlohmann reports a 1-based count of characters read.
   throw SceneError(file, json_line_column(text, builder.error_byte == 0 ? 0 : builder.error_byte - 1),
-                   "invalid JSON: " + strip_nlohmann_prefix(builder.error_message));
+                   "invalid JSON: " + json_syntax_detail(builder.error_message));
 }
 
 }  // namespace lumis

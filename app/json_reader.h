@@ -23,6 +23,10 @@ using Json = nlohmann::ordered_json;
 /// location is the JSON pointer of the second occurrence).
 Json parse_json_text(const std::string& text, const std::string& file);
 
+/// nlohmann's syntax-error message in lumis's words ("syntax error while parsing value - ..."): its prefix and
+/// position dropped (the caller gives line:column), bytes that are not printable UTF-8 written as \xNN.
+std::string json_syntax_detail(std::string nlohmann_message);
+
 /// A key as one token of a JSON pointer (RFC 6901: "~" becomes "~0", "/" becomes "~1").
 std::string escape_pointer_token(std::string_view key);
 

@@ -147,7 +147,7 @@ TEST_F(GltfFiles, ErrorsNameTheGltfPath) {
                {"materials[0].pbrMetallicRoughness.baseColorTexture.index", "out of range"});
 
   // Whole-file problems: not JSON, truncated .glb, absent file, unsupported required extension.
-  expect_error(write("junk.gltf", "{ this is not json"), {"invalid glTF"});
+  expect_error(write("junk.gltf", "{ this is not json"), {"junk.gltf:1:4: invalid JSON: syntax error"});
   std::string glb("glTF\x02\0\0\0\xe8\x03\0\0\x08\0\0\0JSON{}      ", 28);
   expect_error(write("short.glb", glb), {"invalid .glb"});
   expect_error((dir_ / "absent.gltf").string(), {"no such file"});

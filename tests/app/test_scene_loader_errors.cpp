@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "app/json_reader.h"
 #include "core/image_io.h"
 
 #include "tests/app/gltf_synthetic.h"
@@ -39,6 +40,17 @@ TEST_F(SceneLoaderErrors, SyntaxErrorColumnCountsCharactersNotBytes) {
   EXPECT_EQ(load_error("{\"materials\": {\"eee\": 1 x}}").location, "1:25");
   EXPECT_EQ(load_error("{\"materials\": {\"\u00e9\u00e9\u00e9\": 1 x}}").location, "1:25");
   EXPECT_EQ(load_error("{\"a\": \"\u00e9\",\n \"\u20ac\": 1 x}").location, "2:9");  // a new line starts again
+}
+
+// What nlohmann quotes ("last read: '...'") is made printable: ill-formed UTF-8 and control bytes are written \xNN
+// (they once reached the terminal raw), well-formed UTF-8 is kept.
+TEST_F(SceneLoaderErrors, SyntaxErrorQuotesOnlyPrintableText) {
+  const SceneError e = load_error("{\"e\u00e9\": \"\xff\xfe\"}");
+  EXPECT_EQ(e.location, "1:9") << e.what();
+  EXPECT_NE(e.detail.find("ill-formed UTF-8 byte; last read: '\"\\xff'"), std::string::npos) << e.detail;
+  EXPECT_EQ(json_syntax_detail("[json.exception.parse_error.101] parse error at line 1, column 9: syntax error while "
+                               "parsing value - x; last read: '\"\u00e9\x01\x7f\xc3'"),
+            "syntax error while parsing value - x; last read: '\"\u00e9\\x01\\x7f\\xc3'");
 }
 
 TEST_F(SceneLoaderErrors, TruncatedFileGivesPositionAtTheEnd) {

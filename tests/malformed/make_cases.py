@@ -278,7 +278,16 @@ def variant(mutate, positions=TRI, indices=(0, 1, 2)):
     return doc, data
 
 
-case("gltf_invalid_json", ".gltf", '{"asset": {"version": "2.0"}, "meshes": [\n', "invalid glTF")
+# JSON that does not parse is placed at line:column in lumis's words, as in a lumis scene (tinygltf's message was
+# nlohmann's, with its prefix and, for ill-formed UTF-8, the raw bytes it last read).
+case("gltf_invalid_json", ".gltf", '{"asset": {"version": "2.0"}, "meshes": [\n',
+     ":2:1: invalid JSON: syntax error while parsing value - unexpected end of input")
+case("gltf_invalid_utf8", ".gltf", b'{"asset": {"version": "2.0"}, "x": "R\xff\xfe"}\n',
+     ":1:38: invalid JSON: syntax error while parsing value - invalid string: ill-formed UTF-8 byte; last read: "
+     "'\"R\\xff'")
+case("gltf_empty_file", ".gltf", "", ":1:1: invalid JSON: syntax error while parsing value - unexpected end of input")
+case("glb_invalid_json_chunk", ".glb", glb(good_doc, good_data).replace(b'"asset":', b'"asset"=', 1),
+     ":1:9: invalid JSON chunk: syntax error while parsing object separator - invalid literal")
 case("gltf_not_gltf", ".gltf", '{"hello": 1}\n', "invalid glTF")
 good_glb = glb(good_doc, good_data)
 # A damaged .glb's framing is named (tinygltf says only "Invalid glTF binary.").
