@@ -288,8 +288,9 @@ int run_cli(int argc, char** argv) {
   app.set_version_flag("--version", std::string("lumis ") + LUMIS_VERSION);
   app.require_subcommand(1);
   // Usage errors start with "lumis: ", as every other message does.
-  app.failure_message(
-      [](const CLI::App* a, const CLI::Error& e) { return "lumis: " + CLI::FailureMessage::simple(a, e); });
+  app.failure_message([](const CLI::App* a, const CLI::Error& e) {
+    return "lumis: " + reword_cli11(CLI::FailureMessage::simple(a, e));
+  });
   // Past a file-size limit (ulimit -f), a write fails with EFBIG and lumis names the file; the default action of
   // SIGXFSZ would instead kill it with a core dump and leave its temporary file behind.
   std::signal(SIGXFSZ, SIG_IGN);

@@ -69,4 +69,16 @@ std::string unknown_command_problem(int argc, const char* const* argv, const std
   return {};
 }
 
+std::string reword_cli11(std::string message) {
+  // CLI11 2.1: "--spp: At Most 1 required but received 2" for an option given twice.
+  const std::string at_most = ": At Most 1 required but received ";
+  const size_t at = message.find(at_most);
+  if (at == std::string::npos) return message;
+  const size_t digits = at + at_most.size();
+  const size_t end = message.find_first_not_of("0123456789", digits);
+  const std::string n = message.substr(digits, end - digits);
+  return message.substr(0, at) + ": given " + n + " times; give it once" +
+         (end == std::string::npos ? "" : message.substr(end));
+}
+
 }  // namespace lumis

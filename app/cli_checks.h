@@ -23,4 +23,8 @@ std::string whole_problem(const std::string& text, long long lo, long long hi);
 /// an option other than --help or --version before the command: "'--spp' comes before the command 'render'; ...".
 std::string unknown_command_problem(int argc, const char* const* argv, const std::vector<std::string>& commands);
 
+/// CLI11's message in lumis's words where its own is unclear: an option given twice ("--spp: At Most 1 required but
+/// received 2") becomes "--spp: given 2 times; give it once". Other messages are returned as they are.
+std::string reword_cli11(std::string message);
+
 }  // namespace lumis

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "app/commands.h"
 #include "app/memory_check.h"
@@ -54,8 +55,14 @@ int run_render(const RenderArgs& args) {
     return 2;
   }
   if (ext != ".exr" && (args.aov_albedo || args.aov_normal || args.aov_depth)) {
-    std::cerr << "lumis: " << out << ": --aov-albedo, --aov-normal and --aov-depth add EXR channels; write an .exr "
-              << "to keep them\n";
+    std::vector<std::string> given;  // the flags given, not all three
+    if (args.aov_albedo) given.push_back("--aov-albedo");
+    if (args.aov_normal) given.push_back("--aov-normal");
+    if (args.aov_depth) given.push_back("--aov-depth");
+    std::string list = given[0];
+    for (size_t i = 1; i < given.size(); ++i) list += (i + 1 == given.size() ? " and " : ", ") + given[i];
+    std::cerr << "lumis: " << out << ": " << list << (given.size() == 1 ? " adds" : " add")
+              << " EXR channels; write an .exr to keep them\n";
     return 2;
   }
   std::unique_ptr<Scene> scene;

@@ -81,7 +81,7 @@ int check_warp(const Warp& warp, const std::string& title, const std::string& ce
   // No statistic (dof 0) without an impossible sample (infinite statistic): too few samples for any verdict on
   // the sampler, a usage error.
   if (r.dof == 0 && !std::isinf(r.statistic)) {
-    err << "warptest: " << cfg.samples << " samples are too few for " << title << ": " << r.message;
+    err << "lumis: warptest: " << cfg.samples << " samples are too few for " << title << ": " << r.message;
     if (const uint64_t need = samples_to_decide(h.expected, cfg.samples))
       err << "; use --samples " << need << " or more";
     err << '\n';
@@ -99,7 +99,7 @@ int check_warp(const Warp& warp, const std::string& title, const std::string& ce
       write_image(out_png, histogram_picture(h, cfg.cos_theta_bins, cfg.phi_bins));
       out << "  wrote " << out_png << " (left: observed, right: expected)\n";
     } catch (const std::exception& e) {
-      err << "warptest: " << e.what() << '\n';
+      err << "lumis: warptest: " << e.what() << '\n';
       return 3;
     }
   }

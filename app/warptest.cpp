@@ -145,14 +145,14 @@ int run_warptest(const std::string& name, double given, uint64_t samples, const 
   const auto& entries = registry();
   const auto it = std::find_if(entries.begin(), entries.end(), [&](const WarpEntry& e) { return name == e.name; });
   if (it == entries.end()) {
-    err << "warptest: unknown warp '" << name << "'. Valid names:";
+    err << "lumis: warptest: unknown warp '" << name << "'. Valid names:";
     for (const WarpEntry& e : entries) err << ' ' << e.name;
     err << '\n';
     return 2;
   }
   if (!std::isnan(given)) {
     if (!it->param_help) {
-      err << "warptest: " << name << " takes no --param\n";
+      err << "lumis: warptest: " << name << " takes no --param\n";
       return 2;
     }
     // Checked as given and as the 32-bit float the warp is computed in (0.99999999 rounds to 1, 1e-50 to 0).
@@ -163,20 +163,20 @@ int run_warptest(const std::string& name, double given, uint64_t samples, const 
       std::ostringstream found;  // enough digits to tell 1.0000001 from the bound 1
       found << std::setprecision(9) << given;
       if (inside(given)) found << ", which is " << static_cast<float>(given) << " as the 32-bit float it is used as";
-      err << "warptest: --param: " << it->param_help << " of " << name << " must lie in (" << it->param_lo << ", "
-          << it->param_hi << (it->hi_closed ? "]" : ")") << ", found " << found.str() << '\n';
+      err << "lumis: warptest: --param: " << it->param_help << " of " << name << " must lie in (" << it->param_lo
+          << ", " << it->param_hi << (it->hi_closed ? "]" : ")") << ", found " << found.str() << '\n';
       return 2;
     }
   }
   const float param = std::isnan(given) ? it->default_param : static_cast<float>(given);
   if (const std::string why = it->undecidable ? it->undecidable(param) : ""; !why.empty()) {
-    err << "warptest: " << name << " with " << it->param_help << " = " << param << ": the test cannot decide: " << why
-        << '\n';
+    err << "lumis: warptest: " << name << " with " << it->param_help << " = " << param
+        << ": the test cannot decide: " << why << '\n';
     return 2;
   }
   if (!out_png.empty()) {  // checked before the work, like render's -o
     if (const std::string problem = image_output_problem(out_png, "warp.png"); !problem.empty()) {
-      err << "warptest: " << out_png << ": " << problem << '\n';
+      err << "lumis: warptest: " << out_png << ": " << problem << '\n';
       return 2;
     }
   }

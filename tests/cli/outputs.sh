@@ -64,7 +64,9 @@ rm "$T/dir/latest.png"
 
 # AOV channels exist only in EXR files: asked for with a PNG, a usage error before rendering.
 quick 2 "$LUMIS" "${LONG[@]}" --aov-normal -o "$T/aov.png"
-has "write an .exr"
+has "aov.png: --aov-normal adds EXR channels; write an .exr to keep them"   # the flag given, not all three
+quick 2 "$LUMIS" "${LONG[@]}" --aov-depth --aov-albedo -o "$T/aov.png"
+has "aov.png: --aov-albedo and --aov-depth add EXR channels"
 [ ! -e "$T/aov.png" ] || fail "aov.png written"
 
 # Options the chosen integrator does not use: rendered, with a warning that says so (also with -q).

@@ -28,6 +28,9 @@ for bad in 1e3 1.5 ten -1 0 1073741825; do
   has "lumis: --spp: expected a whole number in [1, 1073741824], found $bad"
   lacks "not in range"
 done
+expect 2 "$LUMIS" "${R[@]}" --spp 2        # R gives --spp 1 already
+has "lumis: --spp: given 2 times; give it once"
+lacks "At Most"
 expect 2 "$LUMIS" "${R[@]}" --width 1e2
 has "lumis: --width: expected a whole number in [1, 16384], found 1e2"
 expect 2 "$LUMIS" "${R[@]}" --max-depth 0
