@@ -110,6 +110,7 @@ void add_camera_option(CLI::App& cmd, RenderOverrides& o) {
 void register_render_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene (lumis JSON, .gltf or .glb) to an image");
+  cmd->footer(scene_defaults_text());
   cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box, scenes/cornell-sphere.json)")
       ->check(kNonEmpty);
   cmd->add_option("-o,--output", args->output,

@@ -118,4 +118,20 @@ std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::v
   return out;
 }
 
+std::string scene_defaults_text() {
+  const RenderSettings d;
+  char text[640];
+  std::snprintf(text, sizeof text,
+                "Where an option is not given, the scene file's value is used (its render and film blocks), else:\n"
+                "  --spp %u, --integrator %s, --max-depth %d, --rr-depth %d, --seed %u,\n"
+                "  --sampler %s, --light-selection %s, --mis-heuristic %s,\n"
+                "  --mis-light-probability %g, --uniform-measure %s, --time %g (none), --exposure %g,\n"
+                "  --width %d --height %d (a glTF file alone: %d wide at its camera's aspect ratio).",
+                d.spp, d.integrator.c_str(), d.max_depth, d.rr_depth, d.seed, sampler_type_name(d.sampler),
+                light_selection_name(d.light_selection), d.mis_heuristic == MisHeuristic::Power ? "power" : "balance",
+                d.mis_light_probability, d.uniform_measure == UniformMeasure::SolidAngle ? "solid-angle" : "theta-phi",
+                d.time_budget, d.exposure, d.width, d.height, d.width);
+  return text;
+}
+
 }  // namespace lumis

@@ -36,6 +36,10 @@ void apply_overrides(const RenderOverrides& o, Scene& scene);
 std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::vector<std::string>& integrators,
                                           bool nee_mis_reference = false);
 
+/// What a render uses where neither the command line nor the scene file says (RenderSettings' defaults), for
+/// `render --help`: "--spp 64, --integrator nee_mis, ...".
+std::string scene_defaults_text();
+
 /// The built-in default scene (scenes/cornell-sphere.json), found next to the sources or the executable.
 std::string default_scene_path();
 

@@ -28,6 +28,10 @@ for bad in 1e3 1.5 ten -1 0 1073741825; do
   has "lumis: --spp: expected a whole number in [1, 1073741824], found $bad"
   lacks "not in range"
 done
+# render --help gives the defaults that apply where the scene file is silent too (they are RenderSettings').
+expect 0 "$LUMIS" render --help
+grep -q "^  --spp 64, --integrator nee_mis, --max-depth 8, --rr-depth 3, --seed 0,$" "$T/out" ||
+  fail "render --help lacks the defaults: $(cat "$T/out")"
 expect 2 "$LUMIS" "${R[@]}" --spp 2        # R gives --spp 1 already
 has "lumis: --spp: given 2 times; give it once"
 lacks "At Most"
