@@ -111,9 +111,9 @@ int prepare(const CompareArgs& args, const std::string& scene_path, const fs::pa
   return 0;
 }
 
-// Creates DIR, recording in `created` the folders this run makes, DIR and any missing parents (innermost first): a
-// failure removes those it leaves empty, so that `-o a/b/out` leaves no empty a/b behind. Throws when DIR cannot be
-// written in (before any rendering, not after the reference). A report from an earlier run would describe images this
+// Checks that DIR can be made and written in, recording in `created` the folders this run makes, DIR and any missing
+// parents (innermost first), and removes them again until the first write: a failure, or a signal, leaves no empty
+// a/b behind for `-o a/b/out`. Throws when DIR cannot be written in (before any rendering, not after the reference). A report from an earlier run would describe images this
 // run replaces: removed first, so that a run that fails part way leaves no report (the cached reference stays).
 void make_output_folder(const fs::path& dir, std::vector<fs::path>& created) {
   for (fs::path p = dir; !p.empty() && !fs::exists(fs::symlink_status(p)); p = p.parent_path()) {
@@ -124,6 +124,11 @@ void make_output_folder(const fs::path& dir, std::vector<fs::path>& created) {
   if (::access(dir.c_str(), W_OK) != 0)
     throw std::runtime_error(dir.string() + ": cannot write in this folder (" + std::strerror(errno) + ")");
   for (const char* f : {"report.json", "report.md", "index.html"}) fs::remove(dir / f);
+  // Made again by the first write: a run stopped before it (Ctrl-C while the reference renders) leaves no empty
+  // folders behind, as a failure does.
+  std::error_code ec;
+  for (const fs::path& p : created)
+    if (fs::is_empty(p, ec)) fs::remove(p, ec);
 }
 
 }  // namespace
@@ -170,6 +175,7 @@ int run_compare(const CompareArgs& args) {
     else report.reference_source = args.reference;
     WriteOptions display;
     display.exposure = base.exposure;
+    fs::create_directories(dir);  // the first write of a given reference (make_output_folder left none)
     write_image((dir / report.reference_png).string(), reference, display);
 
     const std::vector<Image> images =

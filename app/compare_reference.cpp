@@ -157,6 +157,7 @@ Image cached_reference(Scene& scene, const CompareArgs& args, const RenderSettin
     rs.seed = reference_seed(base.seed);
     Rendered r = render_variant(scene, rs, ref_spp, 0);
     reference = std::move(r.image);
+    fs::create_directories(exr.parent_path());  // -o's folder, made only now that there is something to write
     write_image(exr.string(), reference);
     nlohmann::json files = nlohmann::json::array();
     for (const HashedInput& in : hashed) files.push_back({{"file", in.file}, {"fnv1a", in.hash}});

@@ -2,7 +2,7 @@
 # Interruption and time budgets keep the work done so far: Ctrl-C (SIGINT) during a long render writes the image
 # rendered so far (exit 130) with its true sample count in the EXR metadata and leaves no temporary file; SIGTERM
 # does the same (exit 143); --time stops at the budget (exit 0) the same way; a render too large for the memory
-# available fails before allocating.
+# available fails before allocating; a compare stopped before its first write leaves no folders.
 # Usage: interrupt.sh path/to/lumis
 set -uo pipefail
 LUMIS=${1:?usage: interrupt.sh path/to/lumis}
@@ -127,4 +127,19 @@ if ! grep -q -i "sanitizer" "$T/err"; then
   grep -q "repetition" "$T/err" && fail "oversized bench measured a scene: $(cat "$T/err")"
   [ ! -e "$T/mem/bench.json" ] || fail "oversized bench wrote --json"
 fi
+# compare stopped while its reference renders (SIGTERM: a job started with & ignores SIGINT, and compare leaves the
+# signal at its default) has written nothing yet: it leaves none of the folders -o made, where it once left them
+# empty. Signalled every half second, as above, killed after 30 s.
+"$LUMIS" compare "$SCENE" --width 32 --height 32 --spp 1 --reference-spp 1000000 -q -o "$T/cmpint/a/b" 2>"$T/err" &
+pid=$!
+sleep 1
+for _ in $(seq 1 60); do
+  kill -TERM "$pid" 2>/dev/null || break
+  sleep 0.5
+done
+kill -KILL "$pid" 2>/dev/null
+wait "$pid"
+code=$?
+[ "$code" = 143 ] || fail "compare stopped by SIGTERM exited $code, expected 143"
+[ ! -e "$T/cmpint" ] || fail "a stopped compare left folders: $(find "$T/cmpint")"
 echo "interrupt, time budget and memory checks passed"
