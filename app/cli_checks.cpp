@@ -54,7 +54,7 @@ std::string unknown_command_problem(int argc, const char* const* argv, const std
     if (!word.empty() && word[0] == '-') {
       // lumis's own options take no value; any other option before the command belongs to the command, and
       // CLI11 would call its value ("--spp 2 render": '2') an unknown command.
-      if (word == "-h" || word == "--help" || word == "--help-all" || word == "--version") continue;
+      if (word == "-h" || word == "--help" || word == "--version") continue;
       for (int j = i + 1; j < argc; ++j)
         if (is_command(argv[j]))
           return "'" + word + "' comes before the command '" + argv[j] + "'; options go after it: lumis " + argv[j] +

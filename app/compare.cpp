@@ -113,8 +113,9 @@ int prepare(const CompareArgs& args, const std::string& scene_path, const fs::pa
 
 // Checks that DIR can be made and written in, recording in `created` the folders this run makes, DIR and any missing
 // parents (innermost first), and removes them again until the first write: a failure, or a signal, leaves no empty
-// a/b behind for `-o a/b/out`. Throws when DIR cannot be written in (before any rendering, not after the reference). A report from an earlier run would describe images this
-// run replaces: removed first, so that a run that fails part way leaves no report (the cached reference stays).
+// a/b behind for `-o a/b/out`. Throws when DIR cannot be written in (before any rendering, not after the
+// reference). A report from an earlier run would describe images this run replaces: removed first, so that a run
+// that fails part way leaves no report (the cached reference stays).
 void make_output_folder(const fs::path& dir, std::vector<fs::path>& created) {
   for (fs::path p = dir; !p.empty() && !fs::exists(fs::symlink_status(p)); p = p.parent_path()) {
     created.push_back(p);

@@ -99,12 +99,13 @@ void check_depth(const Context& ctx, const std::string& text, bool binary) {
 /// prefix and the raw bytes it last read).
 [[noreturn]] void fail_syntax(const Context& ctx, const std::string& text, bool binary) {
   try {
-    (void)Json::parse(text);
+    const Json doc = Json::parse(text);  // throws: the text failed to parse a moment ago
+    (void)doc;
   } catch (const Json::parse_error& e) {
     throw SceneError(ctx.file, json_line_column(text, e.byte == 0 ? 0 : e.byte - 1),
                      std::string(binary ? "invalid JSON chunk: " : "invalid JSON: ") + json_syntax_detail(e.what()));
   }
-  ctx.fail("", "invalid JSON");  // not reached: the text failed to parse a moment ago
+  ctx.fail("", "invalid JSON");  // not reached
 }
 
 /// Where tinygltf rejects a file, name the cause in glTF terms when it is one of the likely ones above: a version

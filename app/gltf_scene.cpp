@@ -35,9 +35,9 @@ const GltfCamera& choose_camera(const GltfScene& gltf, const std::string& wanted
     if (found.empty()) continue;
     std::ostringstream nodes;
     for (size_t i : found) nodes << (i == found.front() ? "" : ", ") << i << " (" << gltf.cameras[i].path << ")";
-    throw std::invalid_argument("--camera: " + std::string(by_node ? "several camera nodes of " : "camera '") +
-                                (by_node ? path + " are named '" + wanted + "'" : wanted + "' of " + path +
-                                 " is in several nodes") + ": " + nodes.str() + "; give the number" +
+    const std::string what = by_node ? "several camera nodes of " + path + " are named '" + wanted + "'"
+                                     : "camera '" + wanted + "' of " + path + " is in several nodes";
+    throw std::invalid_argument("--camera: " + what + ": " + nodes.str() + "; give the number" +
                                 (by_node ? "" : " or the node's name"));
   }
   std::ostringstream list;
