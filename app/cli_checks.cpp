@@ -45,16 +45,27 @@ std::string whole_problem(const std::string& text, long long lo, long long hi) {
   return {};
 }
 
+namespace {
+
+std::string list_of(const std::vector<std::string>& names) {
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  return list;
+}
+
+}  // namespace
+
 std::string unknown_command_problem(int argc, const char* const* argv, const std::vector<std::string>& commands) {
   const auto is_command = [&](const std::string& word) {
     return std::find(commands.begin(), commands.end(), word) != commands.end();
   };
+  // lumis's own options take no value; any other option before the command belongs to the command.
+  const auto is_own = [](const std::string& word) { return word == "-h" || word == "--help" || word == "--version"; };
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i];
     if (!word.empty() && word[0] == '-') {
-      // lumis's own options take no value; any other option before the command belongs to the command, and
-      // CLI11 would call its value ("--spp 2 render": '2') an unknown command.
-      if (word == "-h" || word == "--help" || word == "--version") continue;
+      // CLI11 would call the value of a command's option ("--spp 2 render": '2') an unknown command.
+      if (is_own(word)) continue;
       for (int j = i + 1; j < argc; ++j)
         if (is_command(argv[j]))
           return "'" + word + "' comes before the command '" + argv[j] + "'; options go after it: lumis " + argv[j] +
@@ -62,14 +73,29 @@ std::string unknown_command_problem(int argc, const char* const* argv, const std
       continue;  // no command follows: named below, or CLI11 reports the option
     }
     if (is_command(word)) return {};
-    std::string list;
-    for (const std::string& c : commands) list += (list.empty() ? "" : ", ") + c;
-    return "unknown command '" + word + "'; commands: " + list;
+    // "lumis --spp 2": the word is the value of an option that belongs to a command not given.
+    if (const std::string option = i > 1 ? argv[i - 1] : ""; !option.empty() && option[0] == '-' && !is_own(option)) {
+      std::string message = "'";  // appended, not chained with +: GCC 12 warns of a false overlap (-Wrestrict) there
+      message.append(option).append("' is an option of a command; give the command first: lumis COMMAND ");
+      return message.append(option).append(" ").append(word).append(" (commands: ").append(list_of(commands)) + ")";
+    }
+    return "unknown command '" + word + "'; commands: " + list_of(commands);
   }
   return {};
 }
 
 std::string reword_cli11(std::string message) {
+  // CLI11 2.1: "Could not convert: --time = abc" for a number option given text (whole-number options say so
+  // themselves, in whole_problem).
+  const std::string convert = "Could not convert: ";
+  if (message.rfind(convert, 0) == 0) {
+    const size_t eq = message.find(" = ", convert.size());
+    const size_t line = message.find('\n');
+    if (eq != std::string::npos && eq < line)
+      return message.substr(convert.size(), eq - convert.size()) + ": expected a number, found " +
+             message.substr(eq + 3, line == std::string::npos ? std::string::npos : line - eq - 3) +
+             (line == std::string::npos ? "" : message.substr(line));
+  }
   // CLI11 2.1: "--spp: At Most 1 required but received 2" for an option given twice.
   const std::string at_most = ": At Most 1 required but received ";
   const size_t at = message.find(at_most);

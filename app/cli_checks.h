@@ -20,11 +20,13 @@ std::string range_problem(const std::string& text, double lo, double hi, const s
 /// Anything but a whole number in [lo, hi] ("1e3" and "1.5" included): "expected a whole number in [lo, hi], ...".
 std::string whole_problem(const std::string& text, long long lo, long long hi);
 /// The command line's first word that is not an option, when it names none of `commands`: "unknown command ...";
-/// an option other than --help or --version before the command: "'--spp' comes before the command 'render'; ...".
+/// an option other than --help or --version before the command: "'--spp' comes before the command 'render'; ...";
+/// an option's value where the command should be ("lumis --spp 2"): "'--spp' is an option of a command; ...".
 std::string unknown_command_problem(int argc, const char* const* argv, const std::vector<std::string>& commands);
 
 /// CLI11's message in lumis's words where its own is unclear: an option given twice ("--spp: At Most 1 required but
-/// received 2") becomes "--spp: given 2 times; give it once". Other messages are returned as they are.
+/// received 2") becomes "--spp: given 2 times; give it once", a number option given text ("Could not convert:
+/// --time = abc") "--time: expected a number, found abc". Other messages are returned as they are.
 std::string reword_cli11(std::string message);
 
 }  // namespace lumis

@@ -119,6 +119,10 @@ std::string decode_uri(const std::string& uri);
 /// Path of a relative URI (decode_uri) in the glTF file's folder.
 std::string resolve_uri(const Context& ctx, const std::string& uri);
 
+/// Why `file` (a buffer's or image's) cannot be read: "not found", "is a folder" or "is not a regular file (a pipe,
+/// device or socket)", which would block a read; empty for a regular file (links followed).
+std::string unreadable_reason(const std::string& file);
+
 /// buffers[i]'s URI: an external file must be in the glTF file's folder and hold byte_length bytes. When explaining
 /// why tinygltf rejected the file (`uri` as the JSON gives it), also: not empty (a .glb's own buffer has no uri at
 /// all), and a data: URI is base64 of a media type tinygltf decodes, holding byte_length bytes.

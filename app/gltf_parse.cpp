@@ -95,15 +95,17 @@ void check_depth(const Context& ctx, const std::string& text, bool binary) {
                      "); lumis reads at most " + std::to_string(kMaxJsonDepth));
 }
 
-/// JSON that does not parse, at its line:column and in lumis's words (tinygltf's message is nlohmann's, with its
-/// prefix and the raw bytes it last read).
+/// JSON that does not parse, at its line:column and in lumis's words, as a lumis scene's (tinygltf's message is
+/// nlohmann's, with its prefix and the raw bytes it last read). A number beyond the double range is such an error
+/// too: nlohmann throws out_of_range for it, not parse_error.
 [[noreturn]] void fail_syntax(const Context& ctx, const std::string& text, bool binary) {
   try {
-    const Json doc = Json::parse(text);  // throws: the text failed to parse a moment ago
+    const Json doc = parse_json_text(text, ctx.file);  // throws: the text failed to parse a moment ago
     (void)doc;
-  } catch (const Json::parse_error& e) {
-    throw SceneError(ctx.file, json_line_column(text, e.byte == 0 ? 0 : e.byte - 1),
-                     std::string(binary ? "invalid JSON chunk: " : "invalid JSON: ") + json_syntax_detail(e.what()));
+  } catch (const SceneError& e) {
+    const std::string plain = "invalid JSON: ";
+    if (!binary || e.detail.rfind(plain, 0) != 0) throw;
+    throw SceneError(e.file, e.location, "invalid JSON chunk: " + e.detail.substr(plain.size()));
   }
   ctx.fail("", "invalid JSON");  // not reached
 }
@@ -178,9 +180,9 @@ void parse_file(Context& ctx, const std::string& path) {
   for (size_t i = 0; i < ctx.model.images.size(); ++i) {
     const auto& img = ctx.model.images[i];
     if (img.bufferView >= 0 || img.uri.empty()) continue;
-    const fs::path file = resolve_uri(ctx, img.uri);
-    if (!fs::is_regular_file(file, ec))
-      ctx.fail(indexed("images", i), "image file '" + img.uri + "' not found (looked for " + file.string() + ")");
+    const std::string file = resolve_uri(ctx, img.uri);
+    if (const std::string why = unreadable_reason(file); !why.empty())
+      ctx.fail(indexed("images", i), "image file '" + img.uri + "' " + why + " (looked for " + file + ")");
   }
   if (!warn.empty()) ctx.fail("", "tinygltf: " + trim(warn));
 }

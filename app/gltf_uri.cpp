@@ -32,6 +32,15 @@ std::string resolve_uri(const Context& ctx, const std::string& uri) {
   return (std::filesystem::path(ctx.base_dir) / decode_uri(uri)).string();
 }
 
+std::string unreadable_reason(const std::string& file) {
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(file, ec);
+  if (std::filesystem::is_regular_file(st)) return {};
+  if (std::filesystem::is_directory(st)) return "is a folder";
+  if (std::filesystem::exists(st)) return "is not a regular file (a pipe, device or socket)";
+  return "not found";
+}
+
 namespace {
 
 /// At most n characters of s, for messages: a data: URI can be megabytes long.
@@ -89,9 +98,9 @@ void check_buffer_uri(const Context& ctx, size_t i, const std::string& uri, uint
   if (decode_uri(uri).find('\0') != std::string::npos)
     ctx.fail(at + ".uri", "'" + uri + "' names a file with a NUL character (%00) in it");
   const std::string file = resolve_uri(ctx, uri);
+  if (const std::string why = unreadable_reason(file); !why.empty())
+    ctx.fail(at + ".uri", "buffer file '" + uri + "' " + why + " (looked for " + file + ")");
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec))
-    ctx.fail(at + ".uri", "buffer file '" + uri + "' not found (looked for " + file + ")");
   const uint64_t size = std::filesystem::file_size(file, ec);
   if (!ec && size != byte_length)
     ctx.fail(at + ".byteLength", "is " + std::to_string(byte_length) + ", but the file " + file + " has " +

@@ -169,13 +169,21 @@ TEST_F(GltfFiles, ErrorsNameTheGltfPath) {
   write("short.bin", std::string(t.bin.bytes.begin(), t.bin.bytes.begin() + 40));
   expect_error(write("short.gltf", tri(length + R"(,"uri":"short.bin"})")),
                {"short.gltf:buffers[0].byteLength: is 78, but the file", "has 40 bytes"});
-  // A buffer or image that is a pipe would block tinygltf's read forever: reported as missing instead.
+  // A buffer or image that is a pipe would block tinygltf's read forever: refused, and said to be one; a folder
+  // (the URI ".") is said to be a folder, not "not found".
   ASSERT_EQ(::mkfifo((dir_ / "pipe.bin").c_str(), 0600), 0);
-  expect_error(write("pipe.gltf", tri(length + R"(,"uri":"pipe.bin"})")), {"pipe.gltf:buffers[0].uri", "pipe.bin"});
+  expect_error(write("pipe.gltf", tri(length + R"(,"uri":"pipe.bin"})")),
+               {"pipe.gltf:buffers[0].uri: buffer file 'pipe.bin' is not a regular file (a pipe, device or socket)"});
   ASSERT_EQ(::mkfifo((dir_ / "pipe.png").c_str(), 0600), 0);
   expect_error(simple("pipeimg.gltf", t.bin, t.views, t.accessors, prim, R"({"mesh":0})",
                       R"(,"images":[{"uri":"pipe.png"}])" + mat),
-               {"pipeimg.gltf:images[0]", "pipe.png"});
+               {"pipeimg.gltf:images[0]: image file 'pipe.png' is not a regular file (a pipe, device or socket)"});
+  expect_error(write("dot.gltf", tri(length + R"(,"uri":"."})")),
+               {"dot.gltf:buffers[0].uri: buffer file '.' is a folder"});
+  std::filesystem::create_directories(dir_ / "texdir.png");
+  expect_error(simple("dirimg.gltf", t.bin, t.views, t.accessors, prim, R"({"mesh":0})",
+                      R"(,"images":[{"uri":"texdir.png"}])" + mat),
+               {"dirimg.gltf:images[0]: image file 'texdir.png' is a folder"});
   // tinygltf falls back to the working folder; lumis looks only where the file says.
   write("cwd.bin", std::string(t.bin.bytes.begin(), t.bin.bytes.end()));
   fs::create_directories(dir_ / "sub");

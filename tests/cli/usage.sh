@@ -21,6 +21,8 @@ expect 2 "$LUMIS" --spp 2 render "$SCENE"
 has "lumis: '--spp' comes before the command 'render'; options go after it: lumis render --spp ..."
 expect 2 "$LUMIS" -q diff a.exr b.exr
 has "lumis: '-q' comes before the command 'diff'; options go after it: lumis diff -q ..."
+expect 2 "$LUMIS" --spp 2                   # no command at all: '2' was called an unknown command
+has "lumis: '--spp' is an option of a command; give the command first: lumis COMMAND --spp 2 (commands: render,"
 
 R=(render "$SCENE" --width 4 --height 4 --spp 1 -q -o "$T/r.png")
 for bad in 1e3 1.5 ten -1 0 1073741825; do
@@ -48,6 +50,10 @@ for opt in --exposure --time --mis-light-probability; do
   expect 2 "$LUMIS" "${R[@]}" $opt -1e400
   has "lumis: $opt: expected a finite number, found -1e400"
 done
+# Text where a number goes: CLI11 said "Could not convert: --time = abc".
+expect 2 "$LUMIS" "${R[@]}" --time abc
+has "lumis: --time: expected a number, found abc"
+lacks "Could not convert"
 expect 2 "$LUMIS" diff a.exr b.exr --alpha 1e400
 has "lumis: --alpha: expected a finite number, found 1e400"
 [ ! -e "$T/r.png" ] || fail "a refused render wrote r.png"

@@ -285,6 +285,12 @@ case("gltf_invalid_json", ".gltf", '{"asset": {"version": "2.0"}, "meshes": [\n'
 case("gltf_invalid_utf8", ".gltf", b'{"asset": {"version": "2.0"}, "x": "R\xff\xfe"}\n',
      ":1:38: invalid JSON: syntax error while parsing value - invalid string: ill-formed UTF-8 byte; last read: "
      "'\"R\\xff'")
+# nlohmann throws out_of_range, not parse_error, for a number beyond the double range: once an uncaught exception
+# (found by fuzz_gltf).
+case("gltf_number_overflow", ".gltf", '{"asset": {"version": "2.0"}, "x": [1e+200, 1e+894]}\n',
+     ":1:50: invalid JSON: number overflow parsing '1e+894' (numbers must be finite)")
+case("glb_number_overflow", ".glb", glb(good_doc, good_data).replace(b'"2.0"}', b'"2.0", "x": 1e999}', 1),
+     "invalid JSON chunk: number overflow parsing '1e999' (numbers must be finite)")
 case("gltf_empty_file", ".gltf", "", ":1:1: invalid JSON: syntax error while parsing value - unexpected end of input")
 case("glb_invalid_json_chunk", ".glb", glb(good_doc, good_data).replace(b'"asset":', b'"asset"=', 1),
      ":1:9: invalid JSON chunk: syntax error while parsing object separator - invalid literal")
