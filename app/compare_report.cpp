@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/compare.h"
+#include "app/render_overrides.h"
 #include "integrators/integrator.h"
 #include "lights/light_selection.h"
 
@@ -48,8 +49,6 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
-const char* heuristic_name(MisHeuristic h) { return h == MisHeuristic::Power ? "power" : "balance"; }
-const char* measure_name(UniformMeasure m) { return m == UniformMeasure::SolidAngle ? "solid-angle" : "theta-phi"; }
 
 bool has_variant(const CompareReport& r, const std::string& name) {
   for (const VariantResult& v : r.variants)
@@ -71,9 +70,9 @@ nlohmann::json settings_json(const CompareReport& r) {
   j["sampler"] = sampler_type_name(s.sampler);
   j["seed"] = s.seed;
   j["light_selection"] = light_selection_name(s.light_selection);
-  j["mis_heuristic"] = heuristic_name(s.mis_heuristic);
+  j["mis_heuristic"] = mis_heuristic_name(s.mis_heuristic);
   if (has_variant(r, "mis")) j["mis_light_probability"] = s.mis_light_probability;
-  if (has_variant(r, "uniform")) j["uniform_measure"] = measure_name(s.uniform_measure);
+  if (has_variant(r, "uniform")) j["uniform_measure"] = uniform_measure_name(s.uniform_measure);
   if (!r.camera.empty()) j["camera"] = r.camera;
   j["threads"] = s.threads;
   j["exposure"] = s.exposure;
@@ -92,10 +91,10 @@ std::string settings_summary(const CompareReport& r) {
   if (s.rr_depth > 0) out << "Russian roulette from depth " << s.rr_depth;
   else out << "no Russian roulette";
   out << ", " << sampler_type_name(s.sampler) << " sampler, seed " << s.seed << ", "
-      << light_selection_name(s.light_selection) << " light selection, " << heuristic_name(s.mis_heuristic)
+      << light_selection_name(s.light_selection) << " light selection, " << mis_heuristic_name(s.mis_heuristic)
       << " MIS heuristic";
   if (has_variant(r, "mis")) out << ", mis light probability " << fmt("%g", s.mis_light_probability);
-  if (has_variant(r, "uniform")) out << ", uniform measure " << measure_name(s.uniform_measure);
+  if (has_variant(r, "uniform")) out << ", uniform measure " << uniform_measure_name(s.uniform_measure);
   // The thread count changes the images only at equal time (how many samples fit); the exposure only the PNGs.
   if (r.equal_time) out << ", " << (s.threads > 0 ? std::to_string(s.threads) + " threads" : std::string("all cores"));
   if (s.exposure != 0) out << ", exposure " << fmt("%g", s.exposure);
@@ -186,7 +185,7 @@ nlohmann::json reference_key(const RenderSettings& s, uint32_t reference_spp) {
           {"sampler", sampler_type_name(s.sampler)},
           {"seed", reference_seed(s.seed)},
           {"light_selection", light_selection_name(s.light_selection)},
-          {"mis_heuristic", heuristic_name(s.mis_heuristic)}};
+          {"mis_heuristic", mis_heuristic_name(s.mis_heuristic)}};
 }
 
 std::string reference_hash(const std::string& scene_file_hash, const std::string& then, const RenderSettings& s,

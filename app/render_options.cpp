@@ -118,6 +118,11 @@ std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::v
   return out;
 }
 
+const char* mis_heuristic_name(MisHeuristic h) { return h == MisHeuristic::Power ? "power" : "balance"; }
+const char* uniform_measure_name(UniformMeasure m) {
+  return m == UniformMeasure::SolidAngle ? "solid-angle" : "theta-phi";
+}
+
 std::string scene_defaults_text() {
   const RenderSettings d;
   char text[640];
@@ -128,8 +133,8 @@ std::string scene_defaults_text() {
                 "  --mis-light-probability %g, --uniform-measure %s, --time %g (none), --exposure %g,\n"
                 "  --width %d --height %d (a glTF file alone: %d wide at its camera's aspect ratio).",
                 d.spp, d.integrator.c_str(), d.max_depth, d.rr_depth, d.seed, sampler_type_name(d.sampler),
-                light_selection_name(d.light_selection), d.mis_heuristic == MisHeuristic::Power ? "power" : "balance",
-                d.mis_light_probability, d.uniform_measure == UniformMeasure::SolidAngle ? "solid-angle" : "theta-phi",
+                light_selection_name(d.light_selection), mis_heuristic_name(d.mis_heuristic), d.mis_light_probability,
+                uniform_measure_name(d.uniform_measure),
                 d.time_budget, d.exposure, d.width, d.height, d.width);
   return text;
 }

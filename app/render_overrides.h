@@ -36,6 +36,11 @@ void apply_overrides(const RenderOverrides& o, Scene& scene);
 std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::vector<std::string>& integrators,
                                           bool nee_mis_reference = false);
 
+/// The command line's name of a MIS heuristic ("balance", "power") and of a uniform measure ("theta-phi",
+/// "solid-angle"), for reports and help.
+const char* mis_heuristic_name(MisHeuristic h);
+const char* uniform_measure_name(UniformMeasure m);
+
 /// What a render uses where neither the command line nor the scene file says (RenderSettings' defaults), for
 /// `render --help`: "--spp 64, --integrator nee_mis, ...".
 std::string scene_defaults_text();
