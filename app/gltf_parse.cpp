@@ -58,9 +58,10 @@ std::optional<std::string> json_text(const std::string& path, bool binary) {
 }
 
 /// A .glb's framing (glTF 2.0, "GLB File Format Specification"): a 12-byte header (magic, version 2, total length),
-/// then a JSON chunk and an optional binary one, each a length, a type and its bytes. tinygltf refuses a damaged one
-/// with "Invalid glTF binary." alone; this says which part is wrong. A file longer than its header says still loads,
-/// as tinygltf allows.
+/// then a JSON chunk and an optional binary one, each a length, a type and its bytes, ending on 4-byte boundaries.
+/// tinygltf refuses a damaged one with "Invalid glTF binary." alone, and it lets a binary chunk run up to 8 bytes past
+/// the file (it leaves the chunk's own header out of its bound): this says which part is wrong, before tinygltf reads
+/// it. Bytes after the binary chunk are ignored, as the specification asks; so is a file longer than its header says.
 void check_glb_framing(const Context& ctx, const std::string& path) {
   std::error_code ec;
   const uint64_t size = fs::file_size(path, ec);
@@ -82,9 +83,30 @@ void check_glb_framing(const Context& ctx, const std::string& path) {
                      " (is it cut short?)");
   if (std::string_view(head + 16, 4) != "JSON")
     ctx.fail("", "invalid .glb: the first chunk (at byte 12) is not of type JSON");
-  if (uint64_t{json_length} + 20 > length)
+  const uint64_t json_end = uint64_t{json_length} + 20;
+  if (json_end > length)
     ctx.fail("", "invalid .glb: the JSON chunk's " + std::to_string(json_length) + " bytes run past the " +
                      std::to_string(length) + " bytes the header gives the file");
+  if (json_length == 0 || json_length % 4 != 0)
+    ctx.fail("", "invalid .glb: the JSON chunk is " + std::to_string(json_length) +
+                     " bytes long; it must be padded with spaces to a non-zero multiple of 4");
+  if (json_end == length) return;  // no binary chunk
+  const std::string at = std::to_string(json_end);
+  char bin_head[8] = {};
+  if (length - json_end < 12 || !in.seekg(static_cast<std::streamoff>(json_end)) || !in.read(bin_head, 8))
+    ctx.fail("", "invalid .glb: the " + std::to_string(length - json_end) + " bytes after the JSON chunk (at byte " +
+                     at + ") are too few for a binary chunk: its 8-byte header and at least 4 bytes");
+  uint32_t bin_length = 0;
+  std::memcpy(&bin_length, bin_head, 4);
+  if (std::string_view(bin_head + 4, 4) != std::string_view("BIN\0", 4))
+    ctx.fail("", "invalid .glb: the second chunk (at byte " + at + ") is not of type BIN");
+  if (bin_length == 0 || bin_length % 4 != 0)
+    ctx.fail("", "invalid .glb: the binary chunk (at byte " + at + ") is " + std::to_string(bin_length) +
+                     " bytes long; it must be padded to a non-zero multiple of 4");
+  if (json_end + 8 + bin_length > length)
+    ctx.fail("", "invalid .glb: the binary chunk's " + std::to_string(bin_length) + " bytes (from byte " +
+                     std::to_string(json_end + 8) + ") run past the " + std::to_string(length) +
+                     " bytes the header gives the file");
 }
 
 /// tinygltf converts the document to its own values recursively: refuse nesting that would overflow the stack.

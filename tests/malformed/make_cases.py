@@ -272,6 +272,21 @@ TRI = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
 good_doc, good_data = gltf_doc(TRI, [0, 1, 2])
 
 
+def glb_chunks(js, bin_fields=None, payload=b""):
+    """A .glb from a JSON chunk's bytes as given (no padding) and, when bin_fields = (length, type) is given, a binary
+    chunk header with those fields and PAYLOAD after it; the header's total length is the bytes written."""
+    body = struct.pack("<I4s", len(js), b"JSON") + js
+    if bin_fields is not None:
+        body += struct.pack("<I4s", *bin_fields) + payload
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body
+
+
+good_js = json.dumps({k: v for k, v in good_doc.items() if k != "buffers"} |
+                     {"buffers": [{"byteLength": len(good_data)}]}).encode()
+good_js += b" " * (-len(good_js) % 4)
+good_bin = good_data + b"\x00" * (-len(good_data) % 4)
+
+
 def variant(mutate, positions=TRI, indices=(0, 1, 2)):
     doc, data = gltf_doc(positions, list(indices))
     mutate(doc)
@@ -289,7 +304,9 @@ case("gltf_invalid_utf8", ".gltf", b'{"asset": {"version": "2.0"}, "x": "R\xff\x
 # (found by fuzz_gltf).
 case("gltf_number_overflow", ".gltf", '{"asset": {"version": "2.0"}, "x": [1e+200, 1e+894]}\n',
      ":1:50: invalid JSON: number overflow parsing '1e+894' (numbers must be finite)")
-case("glb_number_overflow", ".glb", glb(good_doc, good_data).replace(b'"2.0"}', b'"2.0", "x": 1e999}', 1),
+case("glb_number_overflow", ".glb",
+     glb_chunks(good_js.replace(b'"2.0"}', b'"2.0", "x": 1e999}', 1).ljust(len(good_js) + 12, b" "),
+                (len(good_bin), b"BIN\0"), good_bin),
      "invalid JSON chunk: number overflow parsing '1e999' (numbers must be finite)")
 case("gltf_empty_file", ".gltf", "", ":1:1: invalid JSON: syntax error while parsing value - unexpected end of input")
 case("glb_invalid_json_chunk", ".glb", glb(good_doc, good_data).replace(b'"asset":', b'"asset"=', 1),
@@ -311,6 +328,27 @@ case("glb_version_1", ".glb", good_glb[:4] + struct.pack("<I", 1) + good_glb[8:]
 case("glb_first_chunk_not_json", ".glb", good_glb[:16] + b"BIN\0" + good_glb[20:],
      "invalid .glb: the first chunk (at byte 12) is not of type JSON")
 case("glb_bad_magic", ".glb", b"gltf" + good_glb[4:], "invalid")
+
+
+# The chunks' lengths and types (tinygltf said "Invalid glTF binary." or its own words for these).
+case("glb_json_chunk_unpadded", ".glb", glb_chunks(good_js + b" "),
+     "invalid .glb: the JSON chunk is %d bytes long; it must be padded with spaces to a non-zero multiple of 4"
+     % (len(good_js) + 1))
+case("glb_json_chunk_empty", ".glb", glb_chunks(b"", (len(good_bin), b"BIN\0"), good_bin),
+     "invalid .glb: the JSON chunk is 0 bytes long")
+case("glb_bin_chunk_header_only", ".glb", glb_chunks(good_js, (4, b"BIN\0")),
+     "invalid .glb: the 8 bytes after the JSON chunk (at byte %d) are too few for a binary chunk" % (20 + len(good_js)))
+case("glb_bin_chunk_not_bin", ".glb", glb_chunks(good_js, (len(good_bin), b"DATA"), good_bin),
+     "invalid .glb: the second chunk (at byte %d) is not of type BIN" % (20 + len(good_js)))
+case("glb_bin_chunk_unpadded", ".glb", glb_chunks(good_js, (len(good_bin) - 2, b"BIN\0"), good_bin),
+     "is %d bytes long; it must be padded to a non-zero multiple of 4" % (len(good_bin) - 2))
+# A binary chunk whose length counts its own 8-byte header: tinygltf's bound leaves the header out, so it read the
+# buffer's last 8 bytes from past the end of the file's bytes in memory (a heap over-read under AddressSanitizer).
+case("glb_bin_chunk_past_end", ".glb",
+     glb_chunks(good_js.replace(b'"byteLength": %d' % len(good_data), b'"byteLength": %d' % (len(good_bin) + 8))
+                .ljust(len(good_js) + 4, b" "), (len(good_bin) + 8, b"BIN\0"), good_bin),
+     "invalid .glb: the binary chunk's %d bytes (from byte %d) run past the %d bytes the header gives the file"
+     % (len(good_bin) + 8, 20 + len(good_js) + 4 + 8, 12 + 8 + len(good_js) + 4 + 8 + len(good_bin)))
 
 
 def set_path(path, value):
