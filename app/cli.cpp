@@ -163,6 +163,7 @@ void register_diff_command(CLI::App& app, int& exit_code) {
   cmd->add_option("A", args->a, "Test image")->required()->check(kNonEmpty);
   cmd->add_option("B", args->b, "Reference image")->required()->check(kNonEmpty);
   CLI::Option* metric = cmd->add_option("--metric", args->metric, "Metric that --threshold applies to")
+                            ->check(non_empty("a metric name"))
                             ->check(CLI::IsMember(metric_names()))
                             ->capture_default_str();
   cmd->add_option("--threshold", args->threshold,
@@ -205,7 +206,8 @@ void register_compare_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--reference-spp", args->reference_spp,
                   "Samples per pixel of the rendered nee_mis reference (default: 16 x spp, at least 256)")
       ->transform(whole_in(1, 1 << 30));
-  cmd->add_option("--crop", args->crop, "x,y,w,h: add a row of zoomed crops of this region to montage.png");
+  cmd->add_option("--crop", args->crop, "x,y,w,h: add a row of zoomed crops of this region to montage.png")
+      ->check(non_empty("x,y,w,h"));
   cmd->add_flag("--convergence", args->convergence,
                 "Also render each variant at 1, 2, 4, ... spp up to its own and plot error against time "
                 "(convergence.png)");

@@ -24,12 +24,15 @@ bool read_number(const std::string& text, double& value) {
 
 std::string finite_problem(const std::string& text) {
   // CLI11 runs checks before conversion: parse as the option will (a whole string that is a number).
+  // An empty value (an unset shell variable) would read as "not given" to CLI11: `diff --threshold "$T"` would pass.
+  if (text.empty()) return "expected a finite number, found an empty string";
   double v = 0;
   if (read_number(text, v) && !std::isfinite(v)) return "expected a finite number, found " + text;
   return {};  // finite, or not a number: the option's own conversion reports that
 }
 
 std::string range_problem(const std::string& text, double lo, double hi, const std::string& expected) {
+  // Each option checked here is checked by finite_problem first, which refuses an empty value.
   double v = 0;
   if (read_number(text, v) && !(v >= lo && v <= hi)) return "expected " + expected + ", found " + text;
   return {};
@@ -41,7 +44,8 @@ std::string whole_problem(const std::string& text, long long lo, long long hi) {
   const char* end = text.data() + text.size();
   const auto [stop, ec] = std::from_chars(text.data(), end, v);
   if (ec != std::errc() || stop != end || v < lo || v > hi)
-    return "expected a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], found " + text;
+    return "expected a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], found " +
+           (text.empty() ? "an empty string" : text);
   return {};
 }
 

@@ -23,6 +23,14 @@ expect 1 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --threshold 0
 expect 0 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --threshold 1e9
 expect 0 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --metric psnr --threshold -1e9
 expect 1 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --metric over --tolerance 0 --threshold 0
+# An empty value (T=; lumis diff A B --threshold "$T") is a usage error: it once read as "not given", so the
+# comparison passed with no threshold at all; --tolerance and --alpha alike.
+for opt in --threshold --tolerance --alpha; do
+  expect 2 "$LUMIS" diff "$T/a.exr" "$T/b.exr" $opt ""
+  grep -qF -- "lumis: $opt: expected a finite number, found an empty string" "$T/err" || fail "$opt '': $(cat "$T/err")"
+done
+expect 2 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --metric "" --threshold 0
+grep -qF -- "lumis: --metric: expected a metric name, found an empty string" "$T/err" || fail "--metric '': $(cat "$T/err")"
 # --metric without --threshold and --alpha without --z-test change nothing: each is named in a warning (the exit
 # status is that of the comparison), and with the option it qualifies there is no warning.
 expect 0 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --metric psnr

@@ -56,6 +56,17 @@ has "lumis: --time: expected a number, found abc"
 lacks "Could not convert"
 expect 2 "$LUMIS" diff a.exr b.exr --alpha 1e400
 has "lumis: --alpha: expected a finite number, found 1e400"
+# An empty value (an unset shell variable) is refused, as it is for whole numbers and file names: it once read as
+# "not given", so --time "" rendered at equal samples and --exposure "" at 0 (diff.sh: --threshold "").
+for opt in --time --exposure --mis-light-probability; do
+  expect 2 "$LUMIS" "${R[@]}" $opt ""
+  has "lumis: $opt: expected a finite number, found an empty string"
+done
+expect 2 "$LUMIS" "${R[@]}" --width ""
+has "lumis: --width: expected a whole number in [1, 16384], found an empty string"
+expect 2 "$LUMIS" compare "$SCENE" -o "$T/cmp" --spp 1 --crop ""
+has "lumis: --crop: expected x,y,w,h, found an empty string"
+[ ! -e "$T/cmp" ] || fail "compare --crop '' made its folder"
 [ ! -e "$T/r.png" ] || fail "a refused render wrote r.png"
 # Kept as a 32-bit float, 0.99999999999 is 1, outside [0, 1): the message says so.
 expect 2 "$LUMIS" "${R[@]}" --mis-light-probability 0.99999999999
