@@ -229,12 +229,17 @@ void JsonSceneBuilder::add_environment(const JsonNode& node) {
   const std::string path = resolve_path(file);
   const std::string ext = lower_extension(path);
   if (ext != ".exr" && ext != ".hdr")
-    file.fail("an environment map must be a linear .exr or .hdr file, found \"" + ext + "\"");
+    file.fail("an environment map must be a linear .exr or .hdr file, found " +
+              (ext.empty() ? std::string("a name without an extension") : "\"" + ext + "\""));
   const float scale = node.find("scale") ? node["scale"].as_float(0) : 1.0f;
   const float rotation = node.find("rotation") ? node["rotation"].as_float() : 0.0f;
   std::shared_ptr<const Image> image;
   try {
     Image img = read_image(path, false);
+    // OpenImageIO reads by contents: an 8-bit PNG named .exr would be taken as linear radiance.
+    if (img.format != "openexr" && img.format != "hdr")
+      file.fail("an environment map must be a linear .exr or .hdr file; this one is named \"" + ext +
+                "\" but holds a " + img.format + " image");
     check_texels(img, path, /*allow_negative=*/false);  // radiance
     image = std::make_shared<const Image>(std::move(img));
   } catch (const ImageError& e) {

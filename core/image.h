@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@ struct Image {
   int width = 0, height = 0, channels = 0;
   std::vector<std::string> channel_names;  ///< size == channels
   std::vector<float> data;                 ///< width * height * channels
+  std::string format;  ///< OpenImageIO's reader that decoded the file ("openexr", "hdr", "png"); "" if made here
 
   Image() = default;
   Image(int w, int h, std::vector<std::string> names)
@@ -48,8 +50,10 @@ inline void check_texels(const Image& img, const std::string& path, bool allow_n
       for (int c = 0; c < img.channels; ++c) {
         const float v = img.at(x, y, c);
         if (std::isfinite(v) && (allow_negative || v >= 0)) continue;
+        char value[32];  // %g: std::to_string printed -1e-9 as "-0.000000", which reads as no error at all
+        std::snprintf(value, sizeof(value), "%g", static_cast<double>(v));
         throw ImageError(path + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") channel " +
-                         img.channel_names[c] + " is " + std::to_string(v) + ": expected finite values" +
+                         img.channel_names[c] + " is " + value + ": expected finite values" +
                          (allow_negative ? "" : " >= 0"));
       }
 }

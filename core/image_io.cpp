@@ -51,6 +51,7 @@ Image decode_pixels(OIIO::ImageInput& in, const std::string& name, bool srgb_to_
   for (int c = 0; c < spec.nchannels; ++c)
     if (names[c].empty()) names[c] = std::string("C").append(std::to_string(c));
   Image img(spec.width, spec.height, names);
+  img.format = in.format_name();
   const bool eight_bit = spec.format == OIIO::TypeDesc::UINT8 && spec.channelformats.empty();
   const bool integer_encoded = spec.format.basetype == OIIO::TypeDesc::UINT8 ||
                                spec.format.basetype == OIIO::TypeDesc::UINT16;

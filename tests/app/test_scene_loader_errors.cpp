@@ -4,8 +4,10 @@
 #include <sys/stat.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "app/json_reader.h"
 #include "core/image_io.h"
@@ -326,6 +328,20 @@ TEST_F(SceneLoaderErrors, EnvironmentMapMustBeLinear) {
                      "must be a linear .exr or .hdr file");
 }
 
+// The extension is checked first, then the contents: OpenImageIO reads a PNG named .exr as a PNG, whose 8-bit values
+// would have been taken as linear radiance.
+TEST_F(SceneLoaderErrors, EnvironmentMapMustBeLinearByItsContentsToo) {
+  Image img(2, 2, {"R", "G", "B"});
+  const std::string png = (test_dir() / "map.png").string(), disguised = (test_dir() / "map-png.exr").string();
+  write_image(png, img);
+  std::filesystem::copy_file(png, disguised, std::filesystem::copy_options::overwrite_existing);
+  EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "file": ")" + disguised + R"("}]})", "/lights/0/file",
+                     "must be a linear .exr or .hdr file; this one is named \".exr\" but holds a png image");
+  std::filesystem::copy_file(png, test_dir() / "map", std::filesystem::copy_options::overwrite_existing);
+  EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "file": ")" + (test_dir() / "map").string() + R"("}]})",
+                     "/lights/0/file", "must be a linear .exr or .hdr file, found a name without an extension");
+}
+
 // An EXR of 2x2 grey texels with texel (1, 1) set to `bad` in R, written next to the test's scene.
 std::string exr_with_texel(float bad) {
   Image img(2, 2, {"R", "G", "B"});
@@ -337,10 +353,14 @@ std::string exr_with_texel(float bad) {
 }
 
 TEST_F(SceneLoaderErrors, EnvironmentMapTexelsMustBeFiniteAndNonNegative) {
-  for (float bad : {-1.0f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+  const std::pair<float, const char*> cases[] = {{-1.0f, "-1"},
+                                                  {-1e-9f, "-1e-09"},  // once "-0.000000"
+                                                  {std::numeric_limits<float>::quiet_NaN(), "nan"},
+                                                  {std::numeric_limits<float>::infinity(), "inf"}};
+  for (const auto& [bad, printed] : cases) {
     const std::string map = exr_with_texel(bad);
     EXPECT_SCENE_ERROR(R"({"lights": [{"type": "environment", "file": ")" + map + R"("}]})", "/lights/0/file",
-                       "pixel (1, 1) channel R is");
+                       "pixel (1, 1) channel R is " + std::string(printed) + ": expected finite values >= 0");
   }
 }
 
