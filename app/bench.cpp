@@ -80,6 +80,11 @@ int run_bench(const BenchOptions& o) {
               << "\n";
     return 2;
   }
+  if (!o.overrides.camera.empty()) {  // nor can a camera: one name would not fit every scene
+    std::cerr << "lumis: bench: --camera does not apply: bench measures each scene through the camera lumis "
+                 "render uses without one\n";
+    return 2;
+  }
   RenderSettings probe;  // every scene is measured at these settings
   try {  // reject bad override names before any work
     set_bench_defaults(o, probe);
@@ -118,6 +123,7 @@ int run_bench(const BenchOptions& o) {
   }
   report.repeat = std::max(1, o.repeat);
   report.quick = o.quick;
+  report.raw_rays = bench_raw_rays(o);
   report.load_average_start = load_average();
 
   std::vector<BenchScene> scenes;

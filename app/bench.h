@@ -176,6 +176,7 @@ struct BenchReport {
   std::string cpu;
   int cores = 0, threads = 0, repeat = 0;
   bool quick = false;
+  size_t raw_rays = 0;  ///< rays of each kind asked for (--raw-rays); each scene traces whole frames, so a few more
   double load_average_start = 0, load_average_end = 0;
   std::vector<SceneResult> scenes;
 };

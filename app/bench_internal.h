@@ -66,6 +66,7 @@ struct Target {
   std::string name, scene;
   double value = 0, bound = 0;
   bool at_least = true;  ///< value >= bound (else value < bound)
+  bool detail = false;   ///< another view of the target above it: indented under it in the table
   bool met() const { return at_least ? value >= bound : value < bound; }
 };
 

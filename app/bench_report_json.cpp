@@ -10,11 +10,18 @@ namespace lumis {
 using Json = nlohmann::json;
 using namespace bench_detail;
 
+namespace {
+/// A figure that was not measured is null, as the table's '-': bytes per triangle below 10,000 triangles (the
+/// peak is mostly the film and the program), a kind of ray the render did not trace (light queries of nee_mis).
+Json not_zero(double v) { return v > 0 ? Json(v) : Json(nullptr); }
+}  // namespace
+
 std::string bench_report_json(const BenchReport& r) {
   Json doc;
   doc["machine"] = {{"cpu", r.cpu}, {"cores", r.cores}, {"load_average_start", r.load_average_start},
                     {"load_average_end", r.load_average_end}};
-  doc["settings"] = {{"threads", r.threads}, {"repeat", r.repeat}, {"quick", r.quick}};
+  doc["lumis_version"] = LUMIS_VERSION;
+  doc["settings"] = {{"threads", r.threads}, {"repeat", r.repeat}, {"quick", r.quick}, {"raw_rays", r.raw_rays}};
   Json scenes = Json::array();
   for (const SceneResult& s : r.scenes) {
     Json j = {{"name", s.name}, {"path", s.path}};
@@ -33,7 +40,7 @@ std::string bench_report_json(const BenchReport& r) {
     j["load_seconds"] = s.load_seconds;
     j["bvh_build_seconds"] = s.bvh_seconds;
     j["memory"] = {{"baseline_rss_bytes", s.baseline_rss}, {"peak_rss_bytes", s.peak_rss},
-                   {"peak_reset_per_scene", s.peak_reset}, {"bytes_per_triangle", s.bytes_per_triangle}};
+                   {"peak_reset_per_scene", s.peak_reset}, {"bytes_per_triangle", not_zero(s.bytes_per_triangle)}};
     const RawThroughput& w = s.raw;
     j["raw_rays_per_s"] = {{"camera_intersect1", w.camera1.wall},  {"camera_intersect16", w.camera16.wall},
                            {"bounce_intersect1", w.bounce1.wall},  {"bounce_intersect16", w.bounce16.wall},
@@ -47,10 +54,10 @@ std::string bench_report_json(const BenchReport& r) {
     j["raw_rays_per_s"]["bounce_intersect1_shuffled"] = w.bounce1_shuffled.wall;
     j["raw_rays_per_s"]["shadow_occluded1_shuffled"] = w.shadow1_shuffled.wall;
     j["own_rays_per_s"] = {{"integrator", s.scaling_integrator},
-                           {"camera", s.own_rays_per_s[int(RayKind::Camera)]},
-                           {"bounce", s.own_rays_per_s[int(RayKind::Bounce)]},
-                           {"shadow", s.own_rays_per_s[int(RayKind::Shadow)]},
-                           {"light_query", s.own_rays_per_s[int(RayKind::LightQuery)]}};
+                           {"camera", not_zero(s.own_rays_per_s[int(RayKind::Camera)])},
+                           {"bounce", not_zero(s.own_rays_per_s[int(RayKind::Bounce)])},
+                           {"shadow", not_zero(s.own_rays_per_s[int(RayKind::Shadow)])},
+                           {"light_query", not_zero(s.own_rays_per_s[int(RayKind::LightQuery)])}};
     j["raw_rays_per_cpu_s"] = {{"camera_intersect1", w.camera1.cpu},  {"camera_intersect16", w.camera16.cpu},
                                {"bounce_intersect1", w.bounce1.cpu},  {"bounce_intersect16", w.bounce16.cpu},
                                {"shadow_occluded1", w.shadow1.cpu},   {"shadow_occluded16", w.shadow16.cpu},

@@ -201,7 +201,8 @@ void register_compare_command(CLI::App& app, int& exit_code) {
   cmd->add_option("-o,--output", args->output, "Output folder (default: compare-<scene name>)")->check(kNonEmpty);
   cmd->add_option("--integrators", args->integrators, "Comma-separated variants to compare")->capture_default_str();
   cmd->add_option("--reference", args->reference,
-                  "Reference image (EXR, or PNG decoded from sRGB; R, G, B or grey) instead of rendering one")
+                  "Reference image (EXR or HDR; PNG or JPEG decoded from sRGB; R, G, B or grey) instead of "
+                  "rendering one")
       ->check(kNonEmpty);
   cmd->add_option("--reference-spp", args->reference_spp,
                   "Samples per pixel of the rendered nee_mis reference (default: 16 x spp, at least 256)")
@@ -257,9 +258,12 @@ void register_bench_command(CLI::App& app, int& exit_code) {
           },
           "FILE.glb"));
   add_render_overrides(*cmd, o.overrides);
-  // Registered only to be refused by name (run_bench): bench renders a fixed spp and writes no image.
+  // Registered only to be refused by name (run_bench): bench renders a fixed spp, writes no image and measures
+  // through each scene's default camera.
   cmd->get_option("--time")->group("");
   cmd->get_option("--exposure")->group("");
+  add_camera_option(*cmd, o.overrides);
+  cmd->get_option("--camera")->group("");
   cmd->get_option("--spp")->description("Samples per pixel of every render (default 4; 1 with --quick)");
   // Every scene is measured at bench's own square size, whatever its camera's aspect ratio.
   cmd->get_option("--width")->description("Image width in pixels (default 256; 32 with --quick; alone: square)");

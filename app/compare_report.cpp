@@ -96,7 +96,8 @@ std::string settings_summary(const CompareReport& r) {
   if (has_variant(r, "mis")) out << ", mis light probability " << fmt("%g", s.mis_light_probability);
   if (has_variant(r, "uniform")) out << ", uniform measure " << uniform_measure_name(s.uniform_measure);
   // The thread count changes the images only at equal time (how many samples fit); the exposure only the PNGs.
-  if (r.equal_time) out << ", " << (s.threads > 0 ? std::to_string(s.threads) + " threads" : std::string("all cores"));
+  if (r.equal_time && s.threads > 0) out << ", " << s.threads << (s.threads == 1 ? " thread" : " threads");
+  if (r.equal_time && s.threads <= 0) out << ", all cores";
   if (s.exposure != 0) out << ", exposure " << fmt("%g", s.exposure);
   return out.str();
 }

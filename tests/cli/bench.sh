@@ -22,7 +22,8 @@ import json, sys
 doc = json.load(open(sys.argv[1]))
 for k in ("cpu", "cores", "load_average_start"):
     assert k in doc["machine"], k
-assert doc["settings"]["quick"] is True
+assert doc["settings"]["quick"] is True and doc["settings"]["raw_rays"] == 4096, doc["settings"]
+assert doc["lumis_version"], doc.get("lumis_version")
 assert doc["settings"]["threads"] == min(2, doc["machine"]["cores"]), doc["settings"]  # capped at the cores
 names = [s["name"] for s in doc["scenes"]]
 assert names == ["large", "cornell-sphere"], names
@@ -41,7 +42,10 @@ for s in doc["scenes"]:
         assert raw[k] > 0, (s["name"], k, raw[k])
     own = s["own_rays_per_s"]  # nee_mis's own rays by kind: camera, bounce and shadow rays, no light queries
     assert own["integrator"] == "nee_mis", own
-    assert own["camera"] > 0 and own["bounce"] > 0 and own["shadow"] > 0 and own["light_query"] == 0, own
+    # A figure not measured is null, as the table's '-' (it was 0.0, a rate that reads as infinitely slow).
+    assert own["camera"] > 0 and own["bounce"] > 0 and own["shadow"] > 0 and own["light_query"] is None, own
+    bpt = s["memory"]["bytes_per_triangle"]  # measured from 10,000 triangles on: the large room, not the box
+    assert (bpt > 0) if s["triangles"] >= 10000 else (bpt is None), (s["name"], s["memory"])
     assert {v["integrator"] for v in s["variants"]} == variants
     for v in s["variants"]:
         kinds = v["rays_by_kind"]
@@ -81,6 +85,9 @@ large = doc["scenes"][0]
 assert large["triangles"] >= 20000 and large["generate_seconds"] > 0
 assert large["raw_rays_per_s"]["bounce_hit_fraction"] > 0.99, "the generated room must be closed"
 assert any(t["scene"] == "cornell-sphere" for t in doc["targets"])
+# Each target's name says what it is on its own (the table indents the second views under the first).
+assert all(t["name"] == t["name"].strip() and t["name"].split()[0] in ("nee_mis", "thread", "load", "peak")
+           for t in doc["targets"]), [t["name"] for t in doc["targets"]]
 PY
 
 # The generated scene on its own, through the real loader.
@@ -88,6 +95,12 @@ PY
 [ -s "$T/large.glb" ] || fail "no .glb written"
 "$LUMIS" render "$T/large.glb" --width 16 --height 16 --spp 1 -q -o "$T/large.png" 2>"$T/err" ||
   fail "render of the generated scene: $(cat "$T/err")"
+# A scene with no target at one thread: the Targets heading says so rather than standing empty.
+"$LUMIS" bench "$T/large.glb" --quick --threads 1 --integrator bsdf >"$T/out" 2>"$T/err" ||
+  fail "bench of the generated scene: $(cat "$T/err")"
+grep -A1 "^Targets" "$T/out" | grep -q "^  none measured here: the rays/s targets are cornell-sphere's" ||
+  fail "no targets, no word: $(cat "$T/out")"
+grep -q "^Raw Embree, Mrays/s (wall clock), 1 thread " "$T/out" || fail "one thread, in words: $(cat "$T/out")"
 # Usage errors (exit 2, named on stderr): the room written to anything but a .glb, an assets folder that is not one.
 "$LUMIS" bench --write-large-scene "$T/room.gltf" >"$T/out" 2>"$T/err"
 [ $? = 2 ] || fail "--write-large-scene to a .gltf should exit 2"

@@ -117,10 +117,11 @@ lacks "warning"
 expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1 -q -o "$T/e2.exr"
 lacks "warning"
 
-# bench renders a fixed number of samples and writes no image, so --time and --exposure cannot take effect there:
-# they are refused by name before anything is measured (they were once accepted and ignored), and bench's help does
-# not list them.
-for opt in --time --exposure; do
+# bench renders a fixed number of samples, writes no image and measures through each scene's default camera, so
+# --time, --exposure and --camera cannot take effect there: they are refused by name before anything is measured
+# (--time and --exposure were once accepted and ignored; --camera got CLI11's "argument was not expected"), and
+# bench's help does not list them.
+for opt in --time --exposure --camera; do
   expect 2 "$LUMIS" bench --quick --json "$T/b.json" "$opt" 1
   has "lumis: bench: $opt does not apply: "
   [ ! -s "$T/out" ] || fail "bench $opt measured before refusing: $(cat "$T/out")"
