@@ -11,8 +11,8 @@ using Json = nlohmann::json;
 using namespace bench_detail;
 
 namespace {
-/// A figure that was not measured is null, as the table's '-': bytes per triangle below 10,000 triangles (the
-/// peak is mostly the film and the program), a kind of ray the render did not trace (light queries of nee_mis).
+/// A figure that was not measured is null, as the table's '-': bytes per triangle below 10,000 triangles (bench
+/// leaves it out there), a kind of ray the render did not trace (light queries of nee_mis).
 Json not_zero(double v) { return v > 0 ? Json(v) : Json(nullptr); }
 }  // namespace
 

@@ -198,8 +198,11 @@ void register_compare_command(CLI::App& app, int& exit_code) {
       "compare", "Render a scene with several integrators at equal spp (--spp) or equal time (--time) and compare "
                  "them with a reference");
   cmd->add_option("scene", args->scene, "Scene file (default: the built-in Cornell box)")->check(kNonEmpty);
-  cmd->add_option("-o,--output", args->output, "Output folder (default: compare-<scene name>)")->check(kNonEmpty);
-  cmd->add_option("--integrators", args->integrators, "Comma-separated variants to compare")->capture_default_str();
+  cmd->add_option("-o,--output", args->output, "Output folder (default: compare-<scene name>)")
+      ->check(non_empty("a folder name"));
+  cmd->add_option("--integrators", args->integrators, "Comma-separated variants to compare")
+      ->check(non_empty("names separated by commas"))
+      ->capture_default_str();
   cmd->add_option("--reference", args->reference,
                   "Reference image (EXR or HDR; PNG or JPEG decoded from sRGB; R, G, B or grey) instead of "
                   "rendering one")
@@ -243,6 +246,7 @@ void register_bench_command(CLI::App& app, int& exit_code) {
                 "Tiny settings (32x32, 1 spp, 1 repetition, small raw-ray batches, a 20k-triangle @large; of the "
                 "default scenes only @large and cornell-sphere): a smoke test, not a measurement");
   cmd->add_option("--assets", o.assets_dir, "Shared assets folder with gltf/ (default: <source>/../shared/assets)")
+      ->check(non_empty("a folder"))
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--large-triangles", o.large_triangles,
                   "Triangles in the generated scene, at least (default 1000000; 20000 with --quick)")

@@ -204,7 +204,8 @@ int run_compare(const CompareArgs& args) {
       if (fs::is_empty(p, ec)) fs::remove(p, ec);
     return rc;
   }
-  log("wrote " + (dir / "index.html").string() + ", report.md, report.json, montage.png");
+  log("wrote " + (dir / "index.html").string() + ", report.md, report.json, montage.png" +
+      (args.convergence ? ", convergence.png" : ""));
   if (!args.quiet) std::cout << report_markdown(report);
   return 0;
 }

@@ -110,6 +110,8 @@ CropRect parse_crop(const std::string& text, int width, int height) {
     size_t used = 0;
     try {
       v[i] = std::stoi(parts[i], &used);
+    } catch (const std::out_of_range&) {  // an integer all the same: not "not an integer"
+      throw std::invalid_argument("--crop: '" + parts[i] + "' is out of range (expected x,y,w,h inside the image)");
     } catch (const std::exception&) {
       used = 0;
     }
@@ -117,6 +119,8 @@ CropRect parse_crop(const std::string& text, int width, int height) {
       throw std::invalid_argument("--crop: '" + parts[i] + "' is not an integer (expected x,y,w,h)");
   }
   const CropRect c{v[0], v[1], v[2], v[3]};
+  if (c.w <= 0 || c.h <= 0)
+    throw std::invalid_argument("--crop: " + text + ": the width and height must be at least 1 pixel");
   if (c.x < 0 || c.y < 0 || c.w <= 0 || c.h <= 0 || c.w > width - c.x || c.h > height - c.y)
     throw std::invalid_argument("--crop: " + text + " is not inside the " + std::to_string(width) + "x" +
                                 std::to_string(height) + " image");
@@ -129,6 +133,8 @@ std::vector<std::string> parse_integrator_list(const std::string& text) {
   std::string valid;
   for (const std::string& n : integrator_names()) valid += (valid.empty() ? "" : ", ") + n;
   for (const std::string& n : split(text, ',')) {
+    if (n.empty()) throw std::invalid_argument("--integrators: '" + text + "' has an empty entry (expected names "
+                                               "separated by commas: " + valid + ")");
     bool known = false;
     for (const std::string& k : integrator_names()) known |= k == n;
     if (!known) throw std::invalid_argument("--integrators: unknown integrator '" + n + "' (valid: " + valid + ")");

@@ -61,6 +61,19 @@ TEST(CompareOptions, CropAndIntegratorList) {
     EXPECT_THROW(parse_crop("2147483647,0,1,1", 32, 32), std::invalid_argument);
     EXPECT_THROW(parse_crop("1,1,2147483647,4", 32, 32), std::invalid_argument);
     EXPECT_THROW(parse_crop("0,4,4,2147483647", 32, 32), std::invalid_argument);
+    // The message names what is wrong: a zero width is no "not inside the image", a huge integer no "not an integer".
+    auto crop_error = [](const std::string& text) {
+      try {
+        parse_crop(text, 32, 32);
+      } catch (const std::invalid_argument& e) {
+        return std::string(e.what());
+      }
+      return std::string();
+    };
+    EXPECT_NE(crop_error("0,0,0,4").find("0,0,0,4: the width and height must be at least 1 pixel"), std::string::npos)
+        << crop_error("0,0,0,4");
+    EXPECT_NE(crop_error("99999999999,0,1,1").find("'99999999999' is out of range"), std::string::npos)
+        << crop_error("99999999999,0,1,1");
   }
   {  // IntegratorList
     EXPECT_EQ(parse_integrator_list("mis,bsdf"), (std::vector<std::string>{"mis", "bsdf"}));
@@ -68,6 +81,12 @@ TEST(CompareOptions, CropAndIntegratorList) {
     EXPECT_THROW(parse_integrator_list("mis,mis"), std::invalid_argument);
     EXPECT_THROW(parse_integrator_list("mis,photon"), std::invalid_argument);
     EXPECT_THROW(parse_integrator_list(""), std::invalid_argument);
+    try {  // a trailing comma: an empty entry, not "unknown integrator ''"
+      parse_integrator_list("bsdf,");
+      ADD_FAILURE() << "bsdf, accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("'bsdf,' has an empty entry"), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -16,6 +16,7 @@ VARIANTS=(uniform bsdf light mis nee_mis)
 # Equal samples, all five variants, crops and convergence.
 D="$T/eq"
 expect 0 "$LUMIS" compare "$SCENE" "${SMALL[@]}" --spp 8 --crop 8,8,8,8 --convergence -o "$D"
+grep -q "compare: wrote .*, montage.png, convergence.png$" "$T/err" || fail "wrote line: $(grep wrote "$T/err")"
 for f in reference.exr reference.json reference.png montage.png convergence.png report.json report.md index.html; do
   [ -s "$D/$f" ] || fail "missing $f"
 done

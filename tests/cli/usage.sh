@@ -67,6 +67,12 @@ has "lumis: --width: expected a whole number in [1, 16384], found an empty strin
 expect 2 "$LUMIS" compare "$SCENE" -o "$T/cmp" --spp 1 --crop ""
 has "lumis: --crop: expected x,y,w,h, found an empty string"
 [ ! -e "$T/cmp" ] || fail "compare --crop '' made its folder"
+expect 2 "$LUMIS" compare "$SCENE" -o ""
+has "lumis: --output: expected a folder name, found an empty string"
+expect 2 "$LUMIS" compare "$SCENE" -o "$T/cmp" --integrators ""   # once "unknown integrator ''"
+has "lumis: --integrators: expected names separated by commas, found an empty string"
+expect 2 "$LUMIS" bench --quick --assets ""      # CLI11 said "Directory does not exist: " and nothing
+has "lumis: --assets: expected a folder, found an empty string"
 [ ! -e "$T/r.png" ] || fail "a refused render wrote r.png"
 # Kept as a 32-bit float, 0.99999999999 is 1, outside [0, 1): the message says so.
 expect 2 "$LUMIS" "${R[@]}" --mis-light-probability 0.99999999999
