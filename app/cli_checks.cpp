@@ -32,9 +32,10 @@ std::string finite_problem(const std::string& text) {
 }
 
 std::string range_problem(const std::string& text, double lo, double hi, const std::string& expected) {
-  // Each option checked here is checked by finite_problem first, which refuses an empty value.
+  // Each option checked here is checked by finite_problem first, which refuses an empty value. Text that is no
+  // number gets the range too (CLI11's conversion would say only "expected a number").
   double v = 0;
-  if (read_number(text, v) && !(v >= lo && v <= hi)) return "expected " + expected + ", found " + text;
+  if (!read_number(text, v) || !(v >= lo && v <= hi)) return "expected " + expected + ", found " + text;
   return {};
 }
 

@@ -52,7 +52,10 @@ for opt in --exposure --time --mis-light-probability; do
 done
 # Text where a number goes: CLI11 said "Could not convert: --time = abc".
 expect 2 "$LUMIS" "${R[@]}" --time abc
-has "lumis: --time: expected a number, found abc"
+has "lumis: --time: expected a number of seconds in [0, 1e7], found abc"   # with the option's range
+lacks "Could not convert"
+expect 2 "$LUMIS" diff a.exr b.exr --threshold abc   # no range to give: CLI11's conversion, reworded
+has "lumis: --threshold: expected a number, found abc"
 lacks "Could not convert"
 expect 2 "$LUMIS" diff a.exr b.exr --alpha 1e400
 has "lumis: --alpha: expected a finite number, found 1e400"
