@@ -139,6 +139,7 @@ Image read_image(const std::string& path, bool srgb_to_linear_colour) {
   if (fs::is_directory(path, ec)) fail(path, "is a directory, not an image");
   // A pipe or device would block or stream forever (/dev/zero): decoders need a file they can seek in.
   if (!fs::is_regular_file(path, ec)) fail(path, "is not a regular file (a pipe, device or socket), not an image");
+  if (fs::file_size(path, ec) == 0 && !ec) fail(path, "the file is empty (0 bytes), not an image");
   check_png_chunks(path);
   const OIIO::ImageSpec config = read_config();
   auto in = OIIO::ImageInput::open(path, &config);

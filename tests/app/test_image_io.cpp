@@ -326,6 +326,17 @@ TEST_F(ImageIoTest, ErrorsAndAtomicWrites) {
     const std::string unknown = file("data.xyz");
     std::ofstream(unknown) << "plain text";
     EXPECT_THROW(read_image(unknown), ImageError);
+    // An empty file is named as such in every format (PNG's decoder said "Not a PNG file", HDR's an RGBE error).
+    for (const char* name : {"empty.png", "empty.exr", "empty.hdr", "empty.jpg"}) {
+      const std::string empty = file(name);
+      std::ofstream{empty};
+      try {
+        read_image(empty);
+        ADD_FAILURE() << "expected ImageError for " << name;
+      } catch (const ImageError& e) {
+        EXPECT_EQ(std::string(e.what()), empty + ": the file is empty (0 bytes), not an image");
+      }
+    }
   }
   {  // TruncatedFilesAreErrors: libjpeg fills a cut-off JPEG with grey and only warns; that warning is an error,
      // from a file and from memory (glTF's embedded images), in one line (no stacked OpenImageIO messages).
