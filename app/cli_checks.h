@@ -15,7 +15,8 @@ std::string empty_problem(const std::string& text, const std::string& expected);
 bool read_number(const std::string& text, double& value);
 /// A number that is not finite (NaN, inf); other text passes, for the option's own conversion to report.
 std::string finite_problem(const std::string& text);
-/// A number outside [lo, hi], described as `expected`; other text passes, as above.
+/// Text that is not a number in [lo, hi], described as `expected` ("expected a number of seconds in [0, 1e7], found
+/// abc"); an empty value is left to finite_problem, which every option checked here runs first.
 std::string range_problem(const std::string& text, double lo, double hi, const std::string& expected);
 /// Anything but a whole number in [lo, hi] ("1e3" and "1.5" included): "expected a whole number in [lo, hi], ...".
 std::string whole_problem(const std::string& text, long long lo, long long hi);

@@ -31,10 +31,11 @@ std::vector<std::string> warptest_names();
 /// with the pdf integrated over each cell, prints the statistic, dof, p-value and verdict to `out`, and when out_png
 /// is not empty writes the two histograms side by side on one colour scale. GGX lobes narrower than at alpha = 0.3,
 /// and caps narrower than at cos_max = 0.9, are binned in `stretched` directions, so that the lobe spans the cells.
-/// Returns 0 if the chi-square test passes, 1 if it fails, 2 for a usage error: an unknown name (the valid names are printed), a param outside the warp's domain
-/// (or given to a warp without one) or where the test cannot decide (cos_max above 0.9999, alpha below 1e-19), an
-/// output path that cannot be written or has an unsupported extension (checked before sampling), or too few samples
-/// for the test to decide (the number needed is printed); 3 if the picture could not be written; errors go to `err`.
+/// Returns 0 if the chi-square test passes, 1 if it fails, 2 for a usage error: an unknown name (the valid names
+/// are printed), a param outside the warp's domain (or given to a warp without one) or where the test cannot decide
+/// (cos_max above 0.9999, alpha below 1e-19), an output path that cannot be written or has an unsupported extension
+/// (checked before sampling), or too few samples for the test to decide (the number needed is printed); 3 if the
+/// picture could not be written; errors go to `err`.
 int run_warptest(const std::string& name, double param, uint64_t samples, const std::string& out_png,
                  std::ostream& out, std::ostream& err);
 

@@ -93,8 +93,8 @@ grep -qF "compare: not reusing the cached reference (settings changed: seed 0 ->
 
 # Equal time with a given reference file; an option that neither variant uses is named in a warning (also with -q).
 expect 0 "$LUMIS" compare "$SCENE" --width 32 --height 32 --max-depth 2 --time 0.05 --integrators bsdf,light \
-  --reference "$D/reference.exr" --reference-spp 32 --mis-light-probability 0.3 --light-selection power -o "$T/time" -q \
-  --threads 1
+  --reference "$D/reference.exr" --reference-spp 32 --mis-light-probability 0.3 --light-selection power \
+  -o "$T/time" -q --threads 1
 grep -q '"mode": "equal-time"' "$T/time/report.json" || fail "equal-time mode"
 grep -q "power light selection, balance MIS heuristic, 1 thread\.$" "$T/time/report.md" ||  # once "1 threads"
   fail "equal time's thread count: $(grep Settings "$T/time/report.md")"

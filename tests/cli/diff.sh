@@ -30,7 +30,8 @@ for opt in --threshold --tolerance --alpha; do
   grep -qF -- "lumis: $opt: expected a finite number, found an empty string" "$T/err" || fail "$opt '': $(cat "$T/err")"
 done
 expect 2 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --metric "" --threshold 0
-grep -qF -- "lumis: --metric: expected a metric name, found an empty string" "$T/err" || fail "--metric '': $(cat "$T/err")"
+grep -qF -- "lumis: --metric: expected a metric name, found an empty string" "$T/err" ||
+  fail "--metric '': $(cat "$T/err")"
 # --metric without --threshold and --alpha without --z-test change nothing: each is named in a warning (the exit
 # status is that of the comparison), and with the option it qualifies there is no warning.
 expect 0 "$LUMIS" diff "$T/a.exr" "$T/b.exr" --metric psnr
