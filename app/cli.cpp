@@ -81,8 +81,7 @@ void add_render_overrides(CLI::App& cmd, RenderOverrides& o) {
             // 1 is left out: with light sampling alone, directions no light covers (indirect light) are never
             // drawn, and the estimate loses that light.
             double v = 0;
-            if (!read_number(text, v)) return {};  // not a number: CLI11's conversion reports it
-            if (!(v >= 0 && v < 1)) return "expected a probability in [0, 1), found " + text;
+            if (!read_number(text, v) || !(v >= 0 && v < 1)) return "expected a probability in [0, 1), found " + text;
             // Tested as the float it is kept in too: 0.99999999999 rounds to 1.
             if (!(static_cast<float>(v) < 1))
               return "expected a probability in [0, 1), found " + text + ", which is 1 as the 32-bit float it is "

@@ -80,6 +80,8 @@ has "lumis: --assets: expected a folder, found an empty string"
 # Kept as a 32-bit float, 0.99999999999 is 1, outside [0, 1): the message says so.
 expect 2 "$LUMIS" "${R[@]}" --mis-light-probability 0.99999999999
 has "lumis: --mis-light-probability: expected a probability in [0, 1), found 0.99999999999, which is 1 as the 32-bit"
+expect 2 "$LUMIS" "${R[@]}" --mis-light-probability abc   # its own check: the range too (once "expected a number")
+has "lumis: --mis-light-probability: expected a probability in [0, 1), found abc"
 expect 2 "$LUMIS" bench --quick --repeat 0.5
 has "lumis: --repeat: expected a whole number in [1, 100], found 0.5"
 expect 2 "$LUMIS" warptest uniform_sphere --samples 1e6
