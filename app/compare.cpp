@@ -173,7 +173,10 @@ int run_compare(const CompareArgs& args) {
     if (!args.reference.empty()) reference = read_reference(args.reference, base, scene_path);
     make_output_folder(dir, created);
     if (args.reference.empty()) reference = cached_reference(*scene, args, base, scene_path, dir, report, log);
-    else report.reference_source = args.reference;
+    else {
+      report.reference_source = args.reference;
+      report.reference_grey = is_grey(reference);
+    }
     WriteOptions display;
     display.exposure = base.exposure;
     fs::create_directories(dir);  // the first write of a given reference (make_output_folder left none)

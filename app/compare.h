@@ -77,6 +77,7 @@ struct CompareReport {
   RenderSettings settings;  ///< the variants' settings (their integrator aside), for report.json's "settings"
   std::string camera;       ///< --camera as given (a glTF file's camera); empty: the file's default
   std::string reference_source;  ///< "rendered", "cached" or the --reference path
+  bool reference_grey = false;   ///< a given reference that is grey (Y, or Y and A): its Y stands for R, G and B
   std::string reference_png = "reference.png";
   uint32_t reference_spp = 0;    ///< 0 when given as a file
   std::string reference_hash;

@@ -138,6 +138,7 @@ std::string report_html(const CompareReport& r) {
                      : "equal samples, " + std::to_string(r.spp) + " spp")
     << "; reference: " << html_escape(r.reference_source);
   if (r.reference_spp) h << " (nee_mis, " << r.reference_spp << " spp)";
+  if (r.reference_grey) h << " (grey: its Y is used as R, G and B)";
   h << ".</p>\n<p>Settings: " << html_escape(settings_summary(r)) << ".</p>\n";
   h << "<p>Keys: <kbd>1</kbd>-<kbd>9</kbd> variant, <kbd>r</kbd> reference, <kbd>&larr;</kbd>/<kbd>&rarr;</kbd> "
        "cycle, <kbd>e</kbd> error view, <kbd>f</kbd> fit. Mouse wheel zooms, drag pans, double-click fits.</p>\n";

@@ -213,6 +213,8 @@ nlohmann::json report_json(const CompareReport& r) {
   if (r.reference_spp) {  // a rendered or cached reference; a given one has neither
     j["reference"]["spp"] = r.reference_spp;
     j["reference"]["hash"] = r.reference_hash;
+  } else {  // a given one may be grey, as lumis diff says in its "channels"
+    j["reference"]["channels"] = r.reference_grey ? "Y (as R, G, B)" : "R G B";
   }
   j["error_scale"] = r.error_scale;
   j["montage"] = r.montage;
@@ -252,6 +254,7 @@ std::string report_markdown(const CompareReport& r) {
   else md << "equal samples (" << r.spp << " spp)";
   md << "; reference: " << r.reference_source;
   if (r.reference_spp) md << " (nee_mis, " << r.reference_spp << " spp)";
+  if (r.reference_grey) md << " (grey: its Y is used as R, G and B)";
   md << ".\n\nSettings: " << settings_summary(r) << ".\n\n";
   md << "| variant | spp | time (s) | samples/s | rays/s | MSE | relMSE | efficiency |\n";
   md << "|---|---:|---:|---:|---:|---:|---:|---:|\n";

@@ -100,13 +100,24 @@ grep -q "power light selection, balance MIS heuristic, 1 thread\.$" "$T/time/rep
   fail "equal time's thread count: $(grep Settings "$T/time/report.md")"
 grep -q '"time_budget": 0.05,' "$T/time/report.json" || fail "time budget not 0.05: $(grep time_budget "$T/time/report.json")"
 grep -q "\"source\": \"$D/reference.exr\"" "$T/time/report.json" || fail "given reference not recorded"
-python3 -c 'import json, sys; r = json.load(open(sys.argv[1]))["reference"]; sys.exit(sorted(r) != ["png", "source"])' \
-  "$T/time/report.json" || fail "a given reference has a spp or hash: $(grep -A4 '"reference"' "$T/time/report.json")"
+REF_KEYS='import json, sys; r = json.load(open(sys.argv[1]))["reference"]; sys.exit(r != dict(r, channels=sys.argv[2]) or
+  sorted(r) != ["channels", "png", "source"])'
+python3 -c "$REF_KEYS" "$T/time/report.json" "R G B" ||
+  fail "a given reference has a spp or hash, or no channels: $(grep -A4 '"reference"' "$T/time/report.json")"
 grep -qF "warning: --mis-light-probability only affects the mis integrator; ignored for bsdf, light" "$T/err" ||
   fail "no warning for an option no variant uses: $(cat "$T/err")"
 grep -q "light-selection" "$T/err" && fail "a warning for an option the light variant uses: $(cat "$T/err")"
 grep -qF "warning: --reference-spp only affects a rendered reference; ignored with --reference" "$T/err" ||
   fail "no warning for --reference-spp beside --reference: $(cat "$T/err")"
+# A grey reference (Y alone) is used as R = G = B, and the reports say so, as lumis diff does.
+oiiotool "$D/reference.exr" --ch "Y=R" -o "$T/grey.exr" || fail "oiiotool: grey.exr"
+expect 0 "$LUMIS" compare "$SCENE" --width 32 --height 32 --max-depth 2 --spp 1 --integrators bsdf \
+  --reference "$T/grey.exr" -o "$T/grey" -q
+python3 -c "$REF_KEYS" "$T/grey/report.json" "Y (as R, G, B)" ||
+  fail "a grey reference's channels: $(grep -A4 '"reference"' "$T/grey/report.json")"
+for f in report.md index.html; do
+  grep -qF "reference: $T/grey.exr (grey: its Y is used as R, G and B)." "$T/grey/$f" || fail "$f: grey reference"
+done
 # A rendered reference is nee_mis with --mis-heuristic and --light-selection (they are in its key): no warning that
 # they are ignored, though the one variant (bsdf) reads neither.
 expect 0 "$LUMIS" compare "$SCENE" "${SMALL[@]}" --spp 2 --integrators bsdf --mis-heuristic power \
