@@ -105,6 +105,23 @@ class TemporaryGuard {
   int slot_ = -1;
 };
 
+/// The temporary file beside `path`: `path.tmp-<pid>`, or where that name would pass the longest name its folder's
+/// file system allows (255 bytes on Linux's), `path`'s name cut short to fit, with a count of such names (one
+/// process may write two long names that share their first 240 bytes at once).
+std::string temporary_name(const std::string& path) {
+  static std::atomic<unsigned> count{0};
+  const size_t slash = path.rfind('/');
+  const std::string folder = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const std::string name = path.substr(folder.size());
+  const std::string suffix = ".tmp-" + std::to_string(static_cast<long>(::getpid()));
+  long limit = ::pathconf(folder.empty() ? "." : folder.c_str(), _PC_NAME_MAX);
+  if (limit <= 0) limit = 255;  // no limit known: Linux's
+  if (name.size() + suffix.size() <= static_cast<size_t>(limit)) return path + suffix;
+  const std::string unique = suffix + "-" + std::to_string(count++);
+  return folder + name.substr(0, static_cast<size_t>(limit) - std::min(unique.size(), static_cast<size_t>(limit))) +
+         unique;
+}
+
 }  // namespace
 
 std::string written_file(const std::string& path, bool* loop) {
@@ -138,7 +155,7 @@ std::string write_file_atomically(const std::string& link_or_path, std::string_v
   if (exists && !S_ISREG(old.st_mode))
     return "cannot replace it: not a regular file (a pipe, device or socket)" + via;
   std::string why;
-  const std::string tmp = path + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
+  const std::string tmp = temporary_name(path);
   const TemporaryGuard guard(tmp);  // registered before it exists: a signal after open() still removes it
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) return "cannot create the file: " + reason(errno) + via;

@@ -42,7 +42,8 @@ inline std::string output_format_problem(const std::string& path) {
 
 /// Why an output file could not be created at path, checked before any work is done: the path is a folder, or
 /// something other than a regular file (a pipe, device or socket, which the write's rename would replace with a
-/// file), its folder does not exist or is not a folder, or the folder is not writable. Empty when none of these holds
+/// file), its folder does not exist or is not a folder, the folder is not writable, or the name is longer than the
+/// folder's file system allows (255 bytes on Linux's). Empty when none of these holds
 /// (the write can still fail later, e.g. on a full disk). The message starts with what is wrong, for
 /// "lumis: PATH: "; a folder's names `example` ("out.png") as the file to give instead.
 inline std::string output_file_problem(const std::string& path, const std::string& example = "out.png") {
@@ -66,6 +67,11 @@ inline std::string output_file_problem(const std::string& path, const std::strin
   if (!fs::is_directory(folder, ec)) return via + folder + " is not a folder";
   if (::access(folder.c_str(), W_OK) != 0)
     return via + "cannot write in the folder " + folder + " (" + std::strerror(errno) + ")";
+  // Too long a name would fail only when written, after the work.
+  const std::string name = fs::path(file).filename().string();
+  if (const long limit = ::pathconf(folder.c_str(), _PC_NAME_MAX); limit > 0 && name.size() > size_t(limit))
+    return via + "the file name is " + std::to_string(name.size()) + " bytes long, more than the " +
+           std::to_string(limit) + " its folder's file system allows";
   return "";
 }
 

@@ -26,6 +26,16 @@ quick() {  # quick CODE CMD...: as expect, within 20 s (rendering first would ta
 quick 2 "$LUMIS" "${LONG[@]}" -o "$T/no-such-folder/out.png"
 has "lumis: $T/no-such-folder/out.png: the folder $T/no-such-folder does not exist"
 grep -qF ".tmp-" "$T/err" && fail "the message names a temporary file: $(cat "$T/err")"
+# A name longer than the file system allows is refused up front (it failed after the render); the longest it allows
+# is written, though NAME.tmp-PID is longer still (once "File name too long", after the render, for 248 bytes).
+MAXNAME=$(getconf NAME_MAX "$T")
+LONGNAME=$(printf 'n%.0s' $(seq $((MAXNAME - 4))))  # with .png: the longest name
+quick 2 "$LUMIS" "${LONG[@]}" -o "$T/${LONGNAME}x.png"
+has "lumis: $T/${LONGNAME}x.png: the file name is $((MAXNAME + 1)) bytes long, more than the $MAXNAME its folder's file"
+expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1 -q -o "$T/$LONGNAME.png"
+[ -s "$T/$LONGNAME.png" ] || fail "the longest name was not written"
+[ -z "$(ls "$T" | grep -F .tmp-)" ] || fail "a temporary file was left: $(ls "$T" | grep -F .tmp-)"
+rm "$T/$LONGNAME.png"
 # An empty file or camera name (an unset shell variable) is a usage error, not "not given": it rendered the default
 # scene, or wrote <scene name>.png in the current folder over whatever was there.
 mkdir "$T/cwd"

@@ -110,6 +110,21 @@ TEST_F(AtomicWrite, AMissingFolderOrAFolderInTheWayIsAnErrorNamingNoTemporary) {
   EXPECT_EQ(listing(), std::vector<std::string>{"taken"});
 }
 
+// A name the file system takes (up to 255 bytes on Linux) is written, though NAME.tmp-PID would be too long: the
+// temporary name is cut short. Once a 248-byte name failed with "File name too long", after the whole render.
+TEST_F(AtomicWrite, TheLongestNameTheFileSystemAllowsIsWritten) {
+  const long limit = ::pathconf(dir_.c_str(), _PC_NAME_MAX);
+  ASSERT_GT(limit, 16);
+  const std::string longest(static_cast<size_t>(limit) - 4, 'a'), other = longest.substr(0, longest.size() - 1) + "b";
+  EXPECT_EQ(write_file_atomically(file(longest + ".png"), "one"), "");
+  EXPECT_EQ(write_file_atomically(file(other + ".png"), "two"), "");
+  EXPECT_EQ(content(longest + ".png"), "one");
+  EXPECT_EQ(content(other + ".png"), "two");
+  EXPECT_EQ(listing(), (std::vector<std::string>{longest + ".png", other + ".png"}));
+  EXPECT_NE(write_file_atomically(file(longest + "x.png"), "x").find("File name too long"), std::string::npos);
+  EXPECT_EQ(listing().size(), 2u);
+}
+
 // A run killed mid-write (SIGKILL, power loss) leaves its temporary file; a later process may get the same pid and so
 // the same temporary name. Its write must replace the leftover whole, not overwrite its start and keep its tail.
 TEST_F(AtomicWrite, ALongerLeftoverTemporaryDoesNotKeepItsTail) {
