@@ -136,7 +136,8 @@ void register_warptest_command(CLI::App& app, int& exit_code) {
   for (const auto& n : warptest_names()) names += (names.empty() ? "" : ", ") + n;
   CLI::App* cmd = app.add_subcommand(
       "warptest", "Chi-square test of a sampling routine against its pdf, with a picture of both histograms");
-  cmd->add_option("name", args->name, "Warp to test: " + names)->required();
+  // Not required: without one, run_warptest lists the names (CLI11 would say only "name is required").
+  cmd->add_option("name", args->name, "Warp to test: " + names)->check(non_empty("a warp name"));
   cmd->add_option("--param", args->param,
                   "cos_max in (-1, 1) for spherical_cap, alpha in (0, 1] for ggx_* (default: 0.9, 0.3; the test "
                   "decides for cos_max up to 0.9999 and alpha from 1e-19)")

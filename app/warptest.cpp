@@ -145,7 +145,8 @@ int run_warptest(const std::string& name, double given, uint64_t samples, const 
   const auto& entries = registry();
   const auto it = std::find_if(entries.begin(), entries.end(), [&](const WarpEntry& e) { return name == e.name; });
   if (it == entries.end()) {
-    err << "lumis: warptest: unknown warp '" << name << "'. Valid names:";
+    if (name.empty()) err << "lumis: warptest: which warp? Valid names:";  // none given
+    else err << "lumis: warptest: unknown warp '" << name << "'. Valid names:";
     for (const WarpEntry& e : entries) err << ' ' << e.name;
     err << '\n';
     return 2;

@@ -84,6 +84,10 @@ expect 2 "$LUMIS" "${R[@]}" --mis-light-probability abc   # its own check: the r
 has "lumis: --mis-light-probability: expected a probability in [0, 1), found abc"
 expect 2 "$LUMIS" bench --quick --repeat 0.5
 has "lumis: --repeat: expected a whole number in [1, 100], found 0.5"
+expect 2 "$LUMIS" warptest   # once only "name is required"
+has "lumis: warptest: which warp? Valid names: uniform_theta_phi uniform_hemisphere cosine_hemisphere"
+expect 2 "$LUMIS" warptest ""  # once "unknown warp ''"
+has "lumis: name: expected a warp name, found an empty string"
 expect 2 "$LUMIS" warptest uniform_sphere --samples 1e6
 has "lumis: --samples: expected a whole number in [100000, 1000000000], found 1e6"
 # An image name whose extension is no format lumis writes, or that has none (".png" alone is a hidden file's name,
