@@ -111,6 +111,19 @@ std::pair<const unsigned char*, size_t> buffer_view_bytes(const Context& ctx, in
 /// external images; any fault is ctx.fail with the glTF path, in glTF terms where tinygltf's message is not.
 void parse_file(Context& ctx, const std::string& path);
 
+// --- valid files tinygltf 2.7 refuses (gltf_lenient.cpp) ---
+
+/// The JSON text to give tinygltf instead of the file's: the document without its animations, when a channel's
+/// target has no node (optional in glTF; tinygltf refuses the file). Nothing when the file's own text will do.
+std::optional<std::string> text_for_tinygltf(const Json& doc);
+
+/// Loads the glTF file at `path` (a .glb when `binary`, its binary chunk kept) with `json` as its JSON text.
+bool load_text(tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& err, std::string& warn,
+               const std::string& path, bool binary, const std::string& json);
+
+/// tinygltf's errors without those on what glTF allows: a skin without inverseBindMatrices.
+std::string without_spec_valid_complaints(std::string err);
+
 // --- URIs (gltf_uri.cpp) ---
 
 /// A relative URI's file name: percent-escapes such as %20 decoded, a '+' kept (RFC 3986).
@@ -148,8 +161,9 @@ std::string expand_plus_uri(const std::string& path, void* plus_uris);
 
 /// The glTF JSON `doc` (the file's text parsed before tinygltf reads it; not an object: nothing checked, tinygltf
 /// reports it): a field lumis reads that has the wrong type (which tinygltf would ignore silently, keeping its
-/// default), an index beyond int's range, a negative byte offset, length or stride, or a node with both "matrix" and
-/// translation/rotation/scale is an error naming its glTF path.
+/// default), an index beyond int's range, a negative byte offset, length or stride, a node with both "matrix" and
+/// translation/rotation/scale, a baseColorFactor or emissiveFactor of another length, an accessor type glTF has not,
+/// or a perspective camera without yfov is an error naming its glTF path.
 void check_json(const Context& ctx, const Json& doc);
 
 /// A node's transform in its parent's space: `matrix`, or translation x rotation x scale (rotation normalised).

@@ -2,7 +2,8 @@
 // wrong type ("mesh": "0", "mode": "1", "metallicFactor": "0", an index written 1.0) and keeps its default, stops an
 // array at its first wrong element ("children": [1, "2"] keeps 1), truncates an index beyond int's range, reads a
 // negative byte offset as 0, and keeps a node's matrix when translation/rotation/scale are there too. Each such field
-// is an error naming its glTF path here.
+// is an error naming its glTF path here, as are a few that tinygltf refuses without naming where (a factor's length,
+// an accessor's type, a perspective camera's missing yfov).
 #include <climits>
 #include <cmath>
 #include <string>
@@ -22,26 +23,27 @@ struct Field {
   const char* name;
   Want want;
   const std::vector<Field>* inner = nullptr;  ///< Object, Objects: the fields checked in the object(s)
+  size_t length = 0;  ///< Numbers: how many the array holds (0: any number, or checked where it is read)
 };
 using Fields = std::vector<Field>;
 
 // The fields lumis reads, as glTF 2.0's schema types them (zfar, minFilter, occlusion, skins, animations: not read).
 const Fields kTextureInfo = {{"index", Want::Index}, {"texCoord", Want::Index}};
 const Fields kNormalTextureInfo = {{"index", Want::Index}, {"texCoord", Want::Index}, {"scale", Want::Number}};
-const Fields kPbr = {{"baseColorFactor", Want::Numbers},          {"metallicFactor", Want::Number},
+const Fields kPbr = {{"baseColorFactor", Want::Numbers, nullptr, 4},          {"metallicFactor", Want::Number},
                      {"roughnessFactor", Want::Number},           {"baseColorTexture", Want::Object, &kTextureInfo},
                      {"metallicRoughnessTexture", Want::Object, &kTextureInfo}};
 const Fields kMaterial = {{"name", Want::String},          {"pbrMetallicRoughness", Want::Object, &kPbr},
                           {"normalTexture", Want::Object, &kNormalTextureInfo},
                           {"emissiveTexture", Want::Object, &kTextureInfo},
-                          {"emissiveFactor", Want::Numbers}, {"alphaMode", Want::String},
+                          {"emissiveFactor", Want::Numbers, nullptr, 3}, {"alphaMode", Want::String},
                           {"alphaCutoff", Want::Number},     {"doubleSided", Want::Bool}};
 const Fields kPrimitive = {{"attributes", Want::IndexMap}, {"indices", Want::Index}, {"material", Want::Index},
                            {"mode", Want::Int}};
 const Fields kMesh = {{"primitives", Want::Objects, &kPrimitive}};
 const Fields kNode = {{"name", Want::String},       {"camera", Want::Index},      {"mesh", Want::Index},
                       {"children", Want::Indices}, {"matrix", Want::Numbers},    {"translation", Want::Numbers},
-                      {"rotation", Want::Numbers}, {"scale", Want::Numbers}};
+                      {"rotation", Want::Numbers}, {"scale", Want::Numbers}};  // their lengths: gltf_nodes.cpp
 const Fields kScene = {{"nodes", Want::Indices}};
 const Fields kSparsePart = {{"bufferView", Want::Index}, {"byteOffset", Want::Count}, {"componentType", Want::Int}};
 const Fields kSparse = {{"count", Want::Count}, {"indices", Want::Object, &kSparsePart},
@@ -127,7 +129,12 @@ void check_value(const Context& ctx, const Json& v, const Field& f, const std::s
       if (!holds(*it, element)) refuse(ctx, *it, element, v.is_object() ? at + "." + it.key() : indexed(at, i));
   };
   switch (f.want) {
-    case Want::Numbers: return each(Want::Number);
+    case Want::Numbers:
+      each(Want::Number);
+      if (f.length && v.size() != f.length)  // tinygltf's message would name no place
+        ctx.fail(at, "expected an array of " + std::to_string(f.length) + " numbers, found " +
+                         std::to_string(v.size()));
+      return;
     case Want::Indices: return each(Want::Index);
     case Want::Strings: return each(Want::String);
     case Want::IndexMap: return each(Want::Index);
@@ -167,6 +174,22 @@ void check_json(const Context& ctx, const Json& doc) {
     if (n.contains("matrix") && (n.contains("translation") || n.contains("rotation") || n.contains("scale")))
       ctx.fail(indexed("nodes", i), "has both \"matrix\" and translation/rotation/scale; glTF allows one or the "
                                     "other (lumis's reader would use the matrix alone)");
+  }
+  // What tinygltf refuses without naming where: an accessor's type, a perspective camera without its field of view
+  // (which it calls an OrthographicCamera's).
+  const auto accessors = doc.find("accessors");
+  for (size_t i = 0; accessors != doc.end() && i < accessors->size(); ++i)
+    if (const auto t = (*accessors)[i].find("type"); t != (*accessors)[i].end())
+      if (const std::string s = *t; s != "SCALAR" && s != "VEC2" && s != "VEC3" && s != "VEC4" && s != "MAT2" &&
+                                    s != "MAT3" && s != "MAT4")
+        ctx.fail(indexed("accessors", i) + ".type",
+                 "expected SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4, found " + describe_json(*t));
+  const auto cameras = doc.find("cameras");
+  for (size_t i = 0; cameras != doc.end() && i < cameras->size(); ++i) {
+    const Json& c = (*cameras)[i];
+    if (c.value("type", Json()) == "perspective" && c.contains("perspective") && !c["perspective"].contains("yfov"))
+      ctx.fail(indexed("cameras", i) + ".perspective",
+               "has no yfov; a perspective camera needs its vertical field of view, in radians");
   }
 }
 

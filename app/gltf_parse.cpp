@@ -169,11 +169,13 @@ void parse_file(Context& ctx, const std::string& path) {
   const std::optional<std::string> text = json_text(path, binary);
   if (text) check_depth(ctx, *text, binary);
   PlusUris plus;
+  std::optional<std::string> lenient;  // the JSON text tinygltf gets instead, where it would refuse a valid file
   {  // one parse for lumis's own checks and the '+' URIs, freed before tinygltf parses the text into its model
     const Json doc = text ? Json::parse(*text, nullptr, /*allow_exceptions=*/false) : Json();
     if (text && doc.is_discarded()) fail_syntax(ctx, *text, binary);
     check_json(ctx, doc);
     plus = plus_uris(ctx, doc);
+    lenient = text_for_tinygltf(doc);
   }
 
   tinygltf::TinyGLTF loader;
@@ -181,8 +183,10 @@ void parse_file(Context& ctx, const std::string& path) {
   loader.SetFsCallbacks({&regular_file_exists, &expand_plus_uri, &tinygltf::ReadWholeFile,
                          &tinygltf::WriteWholeFile, &plus});
   std::string err, warn;
-  const bool ok = binary ? loader.LoadBinaryFromFile(&ctx.model, &err, &warn, path)
-                         : loader.LoadASCIIFromFile(&ctx.model, &err, &warn, path);
+  const bool ok = lenient    ? load_text(loader, ctx.model, err, warn, path, binary, *lenient)
+                 : binary     ? loader.LoadBinaryFromFile(&ctx.model, &err, &warn, path)
+                              : loader.LoadASCIIFromFile(&ctx.model, &err, &warn, path);
+  err = without_spec_valid_complaints(err);
   // tinygltf's message, without trailing blanks and at most 300 characters (it can quote a whole data: URI).
   auto trim = [](std::string s) {
     while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
