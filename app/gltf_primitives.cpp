@@ -118,6 +118,16 @@ const PrimitiveBuilder::Decoded& PrimitiveBuilder::decode(int mesh, int prim) {
     }
     d.material = default_material_;
   }
+  // A texture read through a TEXCOORD set the primitive lacks gets uv (0, 0) everywhere: one texel. glTF does not
+  // allow it (Khronos's validator calls it an error); viewers draw such files, so it is a warning.
+  const PbrParams& m = scene_.materials[static_cast<size_t>(d.material)].params;
+  for (const auto& [texture, name] : {std::pair{&m.base_color_texture, "baseColorTexture"},
+                                      {&m.metallic_roughness_texture, "metallicRoughnessTexture"},
+                                      {&m.normal_texture, "normalTexture"}, {&m.emissive_texture, "emissiveTexture"}})
+    if (*texture && ((*texture)->tex_coord == 1 ? d.uv1 : d.uv0).empty())
+      ctx_.warn_once("nouv", at + ": its material's " + name + " reads TEXCOORD_" +
+                                 std::to_string((*texture)->tex_coord) + ", which the primitive does not have; every "
+                                 "point reads the texture at uv (0, 0)");
   return d;
 }
 

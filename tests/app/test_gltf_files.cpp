@@ -211,8 +211,37 @@ TEST_F(GltfFiles, TexturesEmbeddedExternalSamplersAndTransforms) {
   EXPECT_EQ(s.meshes[0].alpha->factor, 0.5f);
   ASSERT_TRUE(s.meshes[0].alpha->texture.has_value());
   EXPECT_EQ(s.meshes[0].alpha->texture->image.get(), bc.image.get());
-  ASSERT_EQ(s.warnings.size(), 1u);
+  ASSERT_EQ(s.warnings.size(), 2u);
   EXPECT_NE(s.warnings[0].find("KHR_materials_volume"), std::string::npos);
+  // The triangle has no texture coordinates: its textures read uv (0, 0), which is named (once, by the first).
+  EXPECT_EQ(s.warnings[1], "meshes[0].primitives[0]: its material's baseColorTexture reads TEXCOORD_1, which the "
+                           "primitive does not have; every point reads the texture at uv (0, 0)");
+}
+
+// A texture read through TEXCOORD_1 on a primitive that has TEXCOORD_0 only: a warning (once the whole quad came
+// out the colour of one texel, silently); through TEXCOORD_0, none.
+TEST_F(GltfFiles, ATextureWithoutItsUvSetIsNamed) {
+  const unsigned char px[4] = {255, 0, 0, 255};
+  ASSERT_TRUE(test::write_png(file("red.png"), 1, 1, 4, px));
+  Triangle t;
+  const size_t uv = t.bin.add<float>({0, 0, 1, 0, 0, 1});
+  const std::string views = t.views.substr(0, t.views.size() - 1) + "," + Triangle::view(uv, 24) + "]";
+  const std::string acc = t.accessors.substr(0, t.accessors.size() - 1) +
+                          R"(,{"bufferView":3,"componentType":5126,"count":3,"type":"VEC2"}])";
+  const std::string prim = R"({"attributes":{"POSITION":0,"NORMAL":1,"TEXCOORD_0":3},"indices":2,"material":0})";
+  for (const int set : {0, 1}) {
+    const std::string extra = R"(,"images":[{"uri":"red.png"}],"textures":[{"source":0}],"materials":[)"
+                              R"({"emissiveFactor":[1,1,1],"emissiveTexture":{"index":0,"texCoord":)" +
+                              std::to_string(set) + "}}]";
+    const GltfScene s = load_gltf(simple("uv.gltf", t.bin, views, acc, prim, R"({"mesh":0})", extra));
+    if (set == 0) {
+      EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
+      continue;
+    }
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_EQ(s.warnings[0], "meshes[0].primitives[0]: its material's emissiveTexture reads TEXCOORD_1, which the "
+                             "primitive does not have; every point reads the texture at uv (0, 0)");
+  }
 }
 
 // Lamps (KHR_lights_punctual, as Blender exports them) are not rendered: a warning of their own counts them by type,
