@@ -75,10 +75,12 @@ struct ComponentTypes {
 };
 /// FLOAT only: POSITION, NORMAL, TANGENT, instance TRANSLATION and SCALE.
 inline const ComponentTypes kFloat = {{{TINYGLTF_COMPONENT_TYPE_FLOAT, false}}};
-/// FLOAT or normalized unsigned integers: TEXCOORD_n, COLOR_n.
+/// FLOAT or normalized unsigned integers: TEXCOORD_n.
 inline const ComponentTypes kFloatOrUnorm = {{{TINYGLTF_COMPONENT_TYPE_FLOAT, false},
                                               {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, true},
                                               {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, true}}};
+/// COLOR_n: the same types, which KHR_mesh_quantization does not widen for colours.
+inline const ComponentTypes kColor = {kFloatOrUnorm.allowed, /*quantizable=*/false};
 /// FLOAT or normalized signed integers: instance ROTATION (EXT_mesh_gpu_instancing).
 inline const ComponentTypes kFloatOrSnorm = {{{TINYGLTF_COMPONENT_TYPE_FLOAT, false},
                                               {TINYGLTF_COMPONENT_TYPE_BYTE, true},

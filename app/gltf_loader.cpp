@@ -19,8 +19,13 @@ namespace {
 void check_extensions(Context& ctx) {
   static const std::set<std::string> supported = {"KHR_texture_transform", "KHR_materials_emissive_strength",
                                                    "EXT_mesh_gpu_instancing"};
+  std::string refused;  // every one, so that a user knows at once what to convert away
+  size_t n_refused = 0;
   for (const auto& e : ctx.model.extensionsRequired)
-    if (!supported.count(e)) ctx.fail("extensionsRequired", "required extension " + e + " is not supported");
+    if (!supported.count(e)) refused += (n_refused++ ? ", " : "") + e;
+  if (n_refused)
+    ctx.fail("extensionsRequired", (n_refused > 1 ? "required extensions " + refused + " are" :
+                                                    "required extension " + refused + " is") + " not supported");
   // Lamps (KHR_lights_punctual, as Blender exports them) get a warning of their own: a dark or sky-lit render would
   // otherwise leave a user wondering where they went. The name list is enough for other extensions.
   const auto& lamps = ctx.model.lights;
@@ -92,8 +97,10 @@ GltfScene load_gltf(const std::string& path, const Mat4& transform, bool read_ca
   // The default scene, else scene 0, else (no scenes at all) every root node.
   std::vector<int> roots;
   const auto& model = ctx.model;
+  std::string nodes_drawn = "node";  // which nodes are drawn, for why_empty
   if (model.defaultScene >= 0 || !model.scenes.empty()) {
     const int s = model.defaultScene >= 0 ? model.defaultScene : 0;
+    nodes_drawn = "node of its default scene, " + indexed("scenes", s) + ",";
     if (static_cast<size_t>(s) >= model.scenes.size())
       ctx.fail("scene", "scene index " + std::to_string(s) + " out of range");
     roots = model.scenes[s].nodes;
@@ -115,6 +122,7 @@ GltfScene load_gltf(const std::string& path, const Mat4& transform, bool read_ca
   AccessorCache acc(ctx);
   PrimitiveBuilder builder(ctx, acc, scene);
   int orthographic = 0;
+  bool mesh_nodes = false;
   // Depth-first, pre-order, in file order (a tree, checked above, so the stack cannot grow without bound).
   std::vector<std::pair<int, Mat4>> stack;
   for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, transform);
@@ -138,6 +146,7 @@ GltfScene load_gltf(const std::string& path, const Mat4& transform, bool read_ca
       }
     }
     if (node.mesh >= 0) {
+      mesh_nodes = true;
       const std::vector<Mat4> instances = gpu_instances(ctx, acc, node, at);
       if (instances.empty()) builder.add_mesh(node.mesh, world, at);
       for (const Mat4& inst : instances) builder.add_mesh(node.mesh, world * inst, at);
@@ -149,6 +158,13 @@ GltfScene load_gltf(const std::string& path, const Mat4& transform, bool read_ca
     scene.warnings.push_back("orthographic cameras skipped (" + std::to_string(orthographic) + ")");
   for (const auto& m : scene.meshes)
     for (const Vec3& p : m.positions) scene.bounds.expand(p);
+  // A file whose meshes only other scenes (or no node) use: "has no triangle meshes" would send its author looking
+  // for them in the wrong place.
+  if (scene.meshes.empty())
+    scene.why_empty = !model.meshes.empty() && !mesh_nodes
+                          ? "no " + nodes_drawn + " has a mesh (the file's " + std::to_string(model.meshes.size()) +
+                                (model.meshes.size() == 1 ? " mesh is" : " meshes are") + " not drawn)"
+                          : "the glTF file has no triangle meshes";
   return scene;
 }
 

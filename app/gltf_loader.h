@@ -43,6 +43,7 @@ struct GltfScene {
   std::vector<std::string> warnings;    ///< things skipped or approximated, one line each
   std::vector<std::string> image_files; ///< the external image files its materials read, resolved, once each
   std::vector<std::string> buffer_files; ///< the external buffer files it reads (not data: URIs), resolved
+  std::string why_empty;  ///< when `meshes` is empty, why, as a phrase ("the glTF file has no triangle meshes")
 };
 
 /// Load the default scene (or scene 0) of a glTF file; `transform` maps glTF world space to lumis world space.

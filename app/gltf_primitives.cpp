@@ -88,7 +88,7 @@ const PrimitiveBuilder::Decoded& PrimitiveBuilder::decode(int mesh, int prim) {
   if (auto* f = attribute("TANGENT", {TINYGLTF_TYPE_VEC4}, kFloat)) d.tangents = to_vec4(*f, 1);
   if (auto* f = attribute("TEXCOORD_0", {TINYGLTF_TYPE_VEC2}, kFloatOrUnorm)) d.uv0 = to_vec2(*f);
   if (auto* f = attribute("TEXCOORD_1", {TINYGLTF_TYPE_VEC2}, kFloatOrUnorm)) d.uv1 = to_vec2(*f);
-  if (auto* f = attribute("COLOR_0", {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, kFloatOrUnorm))
+  if (auto* f = attribute("COLOR_0", {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, kColor))
     d.colors = to_vec4(*f, 1);
 
   std::vector<uint32_t> seq;

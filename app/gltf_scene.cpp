@@ -67,7 +67,7 @@ std::unique_ptr<Scene> load_gltf_scene(const std::string& path, const SceneLoadO
   for (const auto& w : gltf.warnings) std::cerr << path << ": warning: " << w << "\n";
   scene->input_images = gltf.image_files;
   scene->input_files = gltf.buffer_files;
-  if (gltf.meshes.empty()) throw SceneError(path, "", "scene is empty: the glTF file has no triangle meshes");
+  if (gltf.meshes.empty()) throw SceneError(path, "", "scene is empty: " + gltf.why_empty);
   std::string camera_at;  // the chosen camera's glTF path, for errors
   if (options.camera == "0" && gltf.cameras.empty()) {  // "0 = the default": the framing camera here
     std::cerr << path << ": warning: --camera 0: the file has no perspective camera; rendering through the framing "

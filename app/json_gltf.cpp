@@ -46,7 +46,7 @@ void JsonSceneBuilder::add_gltf_shape(const JsonNode& node) {
   }
   for (const auto& w : gltf.warnings) std::cerr << path << ": warning: " << w << "\n";
   // As a mesh shape with no triangle left, and as the file on its own ("scene is empty"): the shape would add nothing.
-  if (gltf.meshes.empty()) file.fail("the glTF file has no triangle meshes, so the shape would add nothing");
+  if (gltf.meshes.empty()) file.fail(gltf.why_empty + ", so the shape would add nothing");
   scene_.input_images.insert(scene_.input_images.end(), gltf.image_files.begin(), gltf.image_files.end());
   scene_.input_files.push_back(path);
   scene_.input_files.insert(scene_.input_files.end(), gltf.buffer_files.begin(), gltf.buffer_files.end());

@@ -41,6 +41,15 @@ TEST_F(GltfFiles, ComponentTypesAreThoseOfCoreGltf) {
                {"accessors[4].componentType: UNSIGNED_BYTE, expected FLOAT, normalized UNSIGNED_BYTE or normalized "
                 "UNSIGNED_SHORT (used by meshes[0].primitives[0].attributes.TEXCOORD_0)",
                 quantization});
+  // KHR_mesh_quantization allows no other types for COLOR_0: the message does not send the author to it.
+  try {
+    load_gltf(simple("color.gltf", t.bin, t.views, with(R"("normalized":true,)", ""),
+                     R"({"attributes":{"POSITION":0,"COLOR_0":3}})"));
+    ADD_FAILURE() << "plain unsigned-byte COLOR_0 accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.detail, "UNSIGNED_BYTE, expected FLOAT, normalized UNSIGNED_BYTE or normalized UNSIGNED_SHORT (used "
+                        "by meshes[0].primitives[0].attributes.COLOR_0)");
+  }
   // Allowed as COLOR_0 in the first primitive, not as NORMAL in the second (the decoded accessor is shared).
   expect_error(simple("shared.gltf", t.bin, t.views, acc,
                       R"({"attributes":{"POSITION":0,"COLOR_0":3}},{"attributes":{"POSITION":0,"NORMAL":3}})"),
@@ -153,7 +162,13 @@ TEST_F(GltfFiles, ErrorsNameTheGltfPath) {
   expect_error((dir_ / "absent.gltf").string(), {"no such file"});
   expect_error(simple("req.gltf", t.bin, t.views, t.accessors, R"({"attributes":{"POSITION":0}})", R"({"mesh":0})",
                       R"(,"extensionsRequired":["KHR_draco_mesh_compression"])"),
-               {"extensionsRequired", "KHR_draco_mesh_compression"});
+               {"extensionsRequired: required extension KHR_draco_mesh_compression is not supported"});
+  // Every unsupported one is named (once only the first), the supported ones are not.
+  expect_error(simple("reqs.gltf", t.bin, t.views, t.accessors, R"({"attributes":{"POSITION":0}})", R"({"mesh":0})",
+                      R"(,"extensionsRequired":["KHR_draco_mesh_compression","KHR_texture_transform",)"
+                      R"("EXT_meshopt_compression"])"),
+               {"extensionsRequired: required extensions KHR_draco_mesh_compression, EXT_meshopt_compression are not "
+                "supported"});
   // Buffer files: missing (the path looked for named), of the wrong size, in a .gltf or a .glb.
   auto tri = [&](const std::string& buffer, const std::string& asset = R"({"version":"2.0"})") {
     return R"({"asset":)" + asset + R"(,"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"

@@ -448,6 +448,12 @@ case("gltf_accessor_type_vec5", ".gltf", embed(*variant(set_path(["accessors", 0
 case("gltf_perspective_no_yfov", ".gltf",
      embed(*variant(lambda d: d.update(cameras=[{"type": "perspective", "perspective": {"znear": 0.1}}]))),
      "cameras[0].perspective: has no yfov; a perspective camera needs its vertical field of view, in radians")
+# Meshes only another scene draws: once "the glTF file has no triangle meshes", which sent the author looking for
+# them in the wrong place.
+case("gltf_default_scene_without_meshes", ".gltf",
+     embed(*variant(lambda d: d["nodes"].append({"name": "empty"}) or
+                    d.update(scenes=[{"nodes": [0]}, {"nodes": [1]}], scene=1))),
+     "scene is empty: no node of its default scene, scenes[1], has a mesh (the file's 1 mesh is not drawn)")
 # Valid glTF that tinygltf 2.7 refused: optional fields it requires, in parts lumis does not read. They render.
 case("gltf_skin_without_inverse_bind_matrices", ".gltf",
      embed(*variant(lambda d: d.update(skins=[{"joints": [0]}]) or d["nodes"][0].update(skin=0))),
