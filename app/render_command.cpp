@@ -90,7 +90,8 @@ int run_render(const RenderArgs& args) {
   RenderSettings& s = scene->settings;
   for (const std::string& w : unused_overrides(args.overrides, {s.integrator}))
     std::cerr << "lumis: warning: " << w << "\n";
-  if (args.overrides.exposure && (ext == ".exr" || ext == ".hdr"))  // linear formats: no exposure applied
+  // Linear formats take no exposure; 0 (a script's default, `--exposure "${EV:-0}"`) changes nothing to warn of.
+  if (args.overrides.exposure && *args.overrides.exposure != 0 && (ext == ".exr" || ext == ".hdr"))
     std::cerr << "lumis: warning: --exposure only affects .png, .jpg and .jpeg output; ignored for " << out << "\n";
   std::unique_ptr<Integrator> integrator;
   try {

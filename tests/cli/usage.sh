@@ -131,6 +131,8 @@ expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1 -q --exposure 3 -
 lacks "warning"
 expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1 -q -o "$T/e2.exr"
 lacks "warning"
+expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1 -q --exposure 0 -o "$T/e2.exr"  # changes nothing
+lacks "warning"
 
 # bench renders a fixed number of samples, writes no image and measures through each scene's default camera, so
 # --time, --exposure and --camera cannot take effect there: they are refused by name before anything is measured
