@@ -21,11 +21,15 @@ struct Ray {
   float tmax = INFINITY;
 };
 
-/// What Embree accepts: finite origin and direction, 0 <= tmin finite, tmax >= 0 and not NaN. Queries of other rays
-/// answer "no hit" (occluded() says occluded) without calling Embree.
+/// What Embree accepts: origin and direction components no larger than its FLT_LARGE (1.844e18: Embree 3's
+/// RayK::valid(), asserted in Debian's build, which aborted on a shadow ray toward a 1e-18 sphere light), 0 <= tmin
+/// finite, tmax >= 0 and not NaN. Queries of other rays answer "no hit" (occluded() says occluded) without Embree.
 inline bool ray_is_valid(const Ray& r) {
-  return is_finite(r.o) && is_finite(r.d) && std::isfinite(r.tmin) && r.tmin >= 0 && !std::isnan(r.tmax) &&
-         r.tmax >= 0;
+  constexpr float kLarge = 1.844e18f;
+  const auto small = [](Vec3 v) {
+    return std::fabs(v.x) <= kLarge && std::fabs(v.y) <= kLarge && std::fabs(v.z) <= kLarge;  // false for NaN
+  };
+  return small(r.o) && small(r.d) && std::isfinite(r.tmin) && r.tmin >= 0 && !std::isnan(r.tmax) && r.tmax >= 0;
 }
 
 /// What a ray hit. Normals are unit and world-space.

@@ -649,6 +649,13 @@ case("json_gltf_error_inside", ".json", dump(scene(shapes=[sphere(), {"type": "g
 # Found by a review (stop 41): cameras that float arithmetic could not hold.
 case("json_camera_huge_near", ".json", dump(scene(camera={"from": [0, 1, 4], "to": [0, 1, 0], "near": 1e20})),
      "/camera/near: the camera's near clip distance, 1e+20, starts its rays up to 1e+20 scene units from the origin")
+# Found by a helper (2026-12-07): a shadow ray toward a sphere light of radius 1e-18 had a direction beyond Embree's
+# FLT_LARGE (1.8e18), and Embree's packet query asserted and aborted lumis (exit 134). It renders (exit 0).
+case("json_sphere_light_radius_tiny", ".json",
+     dump(scene(camera={"from": [0, 3, 3], "to": [0, 0, 0], "fov": 40}, film={"width": 8, "height": 6},
+                shapes=[{"type": "quad", "origin": [-2, 0, 2], "edge_u": [4, 0, 0], "edge_v": [0, 0, -4],
+                         "material": "grey"}],
+                lights=[{"type": "sphere", "center": [0, 2, -1.5], "radius": 1e-18, "radiance": [1, 1, 1]}])), "", 0)
 case("cli_light_probability_rounds_to_one", ".json", dump(BASE), "expected a probability in [0, 1)", 2,
      "--integrator mis --mis-light-probability 0.99999999999")
 

@@ -244,6 +244,9 @@ TEST(Geometry, ShadowPacketMatchesSingleRays) {
       rays[i] = {from, to - from, 1e-4f, rng.next_float() < 0.2f ? 0.3f : 1 - 1e-4f};
     }
     if (packet == 6) rays[4].o = {INFINITY, 0, 0};
+    // Finite, but beyond Embree's FLT_LARGE (1.844e18): its packet query asserted ray.valid() and aborted lumis
+    // (a shadow ray toward a sphere light of radius 1e-18).
+    if (packet == 7) rays[2].d = rays[2].d * 1e19f;
     bool packed[16];
     g.occluded16(rays, n, packed);
     for (int i = 0; i < n; ++i) {
@@ -253,6 +256,9 @@ TEST(Geometry, ShadowPacketMatchesSingleRays) {
     }
     if (packet == 6) {
       EXPECT_TRUE(packed[4]);
+    }
+    if (packet == 7) {
+      EXPECT_TRUE(packed[2]);
     }
   }
   EXPECT_GT(blocked, 50);  // the test sees both outcomes
