@@ -78,10 +78,12 @@ Camera frame_bounds(const Bounds3& bounds, float aspect);
 /// (Scene::framed) so that a new image size can frame them again.
 void frame_camera(Scene& scene, const Bounds3& bounds);
 
-// Embree asserts on rays whose origin lies beyond about 1.8e18 in any coordinate, and products of two lengths
-// (cross products, squared distances) must fit in float: every coordinate of the geometry and the camera stays
-// within this many scene units of the origin. (A framing camera stands about 3 extents away, 3 / aspect for a
-// tall image: an extreme aspect ratio can put it out of range.)
-inline constexpr float kMaxCoordinate = 1e15f;
+// Embree's triangle test multiplies three lengths (a vertex relative to the ray's origin, dotted with the product of
+// two edges): with every point within L of the origin that is at most about 83 L^3, which must fit in float (3.4e38),
+// so L < 1.6e12. Beyond, a finite ray misses every triangle: at 1e13 scene units triangles cast no shadows (a
+// helper's finding, 2026-12-07; the limit was 1e15, set for Embree's 1.8e18 bound on ray origins). Every coordinate
+// of the geometry and the camera stays within this many scene units of the origin. (A framing camera stands about 3
+// extents away, 3 / aspect for a tall image: an extreme aspect ratio can put it out of range.)
+inline constexpr float kMaxCoordinate = 1e12f;
 
 }  // namespace lumis

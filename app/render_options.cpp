@@ -89,7 +89,7 @@ void apply_overrides(const RenderOverrides& o, Scene& scene) {
     std::snprintf(distance, sizeof distance, "%.3g", far);
     throw std::invalid_argument("--width/--height: to frame the scene in a " + std::to_string(scene.settings.width) +
                                 " x " + std::to_string(scene.settings.height) + " image the camera would stand " +
-                                distance + " scene units from the origin, beyond the 1e15 that rays can start "
+                                distance + " scene units from the origin, beyond the 1e12 that rays can start "
                                 "from; choose a less extreme aspect ratio or give the scene a camera");
   }
 }

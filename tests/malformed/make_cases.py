@@ -163,7 +163,7 @@ case("json_mesh_overflow", ".json",
 case("json_camera_far", ".json", dump(scene(camera={"from": [0, 0, 1e19], "to": [0, 0, 0]})),
      "/camera/from: the camera is 1e+19 scene units from the origin")
 case("json_sphere_beyond_float", ".json", dump(scene(camera=None, shapes=[sphere(center=[3e38, 0, 0], radius=3e38)])),
-     "/shapes/0: the shape reaches 6e+38 scene units from the origin; coordinates must stay within 1e+15")
+     "/shapes/0: the shape reaches 6e+38 scene units from the origin; coordinates must stay within 1e+12")
 case("json_quad_far", ".json",
      dump(scene(shapes=[{"type": "quad", "origin": [2e15, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0],
                          "material": "grey"}])), "/shapes/0: the shape reaches 2e+15")
@@ -505,11 +505,11 @@ case("gltf_inf_position", ".gltf", embed(*variant(lambda d: None, positions=[(0,
 case("gltf_huge_translation", ".gltf", embed(*variant(set_path(["nodes", 0, "translation"], [1e300, 0, 0]))),
      "not finite")
 # Found by fuzz_gltf: one vertex at -7.85e25 (finite) put the framing camera beyond Embree's ray range (|origin| up
-# to 1.8e18), an abort in rtcIntersect1 once the BVH holds any valid triangle. Coordinates are limited to 1e15.
+# to 1.8e18), an abort in rtcIntersect1 once the BVH holds any valid triangle. Coordinates are limited to 1e12.
 case("gltf_huge_vertex", ".gltf",
      embed(*variant(lambda d: None, positions=[(0, 0, 0), (1, 0, 0), (0, 1, 0), (0.5, -7.85376861999771e+25, 6.4e-18)],
                     indices=(0, 1, 2, 0, 1, 3))),
-     "coordinates must stay within 1e+15")
+     "coordinates must stay within 1e+12")
 # Degenerate triangles (repeated and collinear corners) load and render; only the good one is visible.
 case("gltf_degenerate_triangles", ".gltf",
      embed(*variant(lambda d: None, positions=[(0, 0, 0), (1, 0, 0), (0, 1, 0), (2, 0, 0)],
@@ -649,6 +649,17 @@ case("json_gltf_error_inside", ".json", dump(scene(shapes=[sphere(), {"type": "g
 # Found by a review (stop 41): cameras that float arithmetic could not hold.
 case("json_camera_huge_near", ".json", dump(scene(camera={"from": [0, 1, 4], "to": [0, 1, 0], "near": 1e20})),
      "/camera/near: the camera's near clip distance, 1e+20, starts its rays up to 1e+20 scene units from the origin")
+# Found by a helper (2026-12-07): at 1e13 scene units Embree's triangle test overflows float, and triangles cast no
+# shadows; this scene (a floor, a triangle and a quad light, 1e13 times their usual size) once rendered so silently.
+case("json_triangle_shadows_out_of_range", ".json",
+     dump(scene(camera={"from": [0, 1.2e13, 4e13], "to": [0, 0.8e13, 0], "fov": 45},
+                shapes=[{"type": "quad", "origin": [-2e13, 0, 2e13], "edge_u": [4e13, 0, 0], "edge_v": [0, 0, -4e13],
+                         "material": "grey"},
+                        {"type": "mesh", "positions": [[-1e13, 0.5e13, 0], [-0.2e13, 0.5e13, 0], [-0.6e13, 1.5e13, 0]],
+                         "indices": [0, 1, 2], "material": "grey"}],
+                lights=[{"type": "quad", "origin": [-0.5e13, 2.2e13, 0], "edge_u": [1e13, 0, 0],
+                         "edge_v": [0, 0, 1e13], "radiance": [8, 8, 8]}])),
+     "/shapes/0: the shape reaches 2e+13 scene units from the origin; coordinates must stay within 1e+12")
 # Found by a helper (2026-12-07): a shadow ray toward a sphere light of radius 1e-18 had a direction beyond Embree's
 # FLT_LARGE (1.8e18), and Embree's packet query asserted and aborted lumis (exit 134). It renders (exit 0).
 case("json_sphere_light_radius_tiny", ".json",
@@ -675,7 +686,7 @@ case("gltf_camera_znear_beyond_float", ".gltf", embed(*variant(camera({"yfov": 0
      "cameras[0].perspective.znear: expected a number >= 0 that stays finite in float")
 case("gltf_camera_yfov_underflows", ".gltf", embed(*variant(camera({"yfov": 1e-50, "znear": 0.01}))),
      "cameras[0].perspective.yfov: expected an angle in (0, pi) radians that is not 0 in float")
-# 1e9 units out (within the 1e15 limit) the camera's point at z = -1 rounded onto its position: "degenerate".
+# 1e9 units out (within the 1e12 limit) the camera's point at z = -1 rounded onto its position: "degenerate".
 case("gltf_camera_far_from_origin", ".gltf",
      embed(*variant(camera({"yfov": 0.8, "znear": 0.01}, (0, 300, 1e9)),
                     positions=[(-1000, 0, 1e9 - 3000), (1000, 0, 1e9 - 3000), (0, 1000, 1e9 - 3000)])), "", 0)

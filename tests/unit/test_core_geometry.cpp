@@ -423,4 +423,30 @@ TEST(Geometry, HitBlendsVertexAttributesByBarycentrics) {
 }
 
 }  // namespace
+
+// A triangle between a point and a light point casts its shadow at every scene scale the loader accepts (up to
+// kMaxCoordinate, 1e12; here points reach 3e12): by single and packet shadow queries, through shadow_ray. At 1e13
+// Embree's triangle test overflows float and a finite ray misses (shadows vanished while the limit was 1e15).
+TEST(Geometry, ShadowRaysSeeTrianglesAtEveryScale) {
+  for (const float s : {1e-12f, 1.0f, 1e4f, 1e12f}) {
+    SCOPED_TRACE(s);
+    Geometry g;
+    TriangleMesh m;
+    m.positions = {{-1 * s, 0.5f * s, 0}, {-0.2f * s, 0.5f * s, 0}, {-0.6f * s, 1.5f * s, 0}};
+    m.indices = {0, 1, 2};
+    g.add_mesh(m);
+    g.commit();
+    const Vec3 from{-0.6f * s, 0.8f * s, -2 * s}, to{-0.6f * s, 0.8f * s, 3 * s};
+    Ray rays[16];
+    for (Ray& r : rays) r = shadow_ray(from, to, {0, 0, -1}, 0);
+    EXPECT_TRUE(g.occluded(rays[0]));
+    bool packed[16];
+    g.occluded16(rays, 16, packed);
+    EXPECT_TRUE(packed[0] && packed[15]);
+    Hit h;
+    EXPECT_TRUE(g.intersect({from, normalize(to - from), 0, INFINITY}, h));
+    EXPECT_TRUE(g.occluded({from, normalize(to - from), 0, 5 * s}));  // a finite segment of unit direction
+  }
+}
+
 }  // namespace lumis
