@@ -113,7 +113,8 @@ std::vector<std::string> unused_overrides(const RenderOverrides& o, const std::v
   };
   unused(o.mis_light_probability.has_value(), "--mis-light-probability", "the mis integrator", {"mis"});
   unused(o.uniform_measure.has_value(), "--uniform-measure", "the uniform integrator", {"uniform"});
-  unused(o.mis_heuristic.has_value(), "--mis-heuristic", "mis and nee_mis", {"mis", "nee_mis"});
+  // mis's one-sample estimator (f / the mixture density) is the balance heuristic itself: no choice to make.
+  unused(o.mis_heuristic.has_value(), "--mis-heuristic", "the nee_mis integrator", {"nee_mis"});
   unused(o.light_selection.has_value(), "--light-selection", "light, mis and nee_mis", {"light", "mis", "nee_mis"});
   return out;
 }
