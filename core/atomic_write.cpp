@@ -105,9 +105,11 @@ class TemporaryGuard {
   int slot_ = -1;
 };
 
-/// The temporary file beside `path`: `path.tmp-<pid>`, or where that name would pass the longest name its folder's
-/// file system allows (255 bytes on Linux's), `path`'s name cut short to fit, with a count of such names (one
-/// process may write two long names that share their first 240 bytes at once).
+}  // namespace
+
+// The temporary file beside `path`: `path.tmp-<pid>`, or where that name would pass the longest name its folder's
+// file system allows (255 bytes on Linux's), `path`'s name cut short to fit, with a count of such names (one
+// process may write two long names that share their first 240 bytes at once).
 std::string temporary_name(const std::string& path) {
   static std::atomic<unsigned> count{0};
   const size_t slash = path.rfind('/');
@@ -118,11 +120,10 @@ std::string temporary_name(const std::string& path) {
   if (limit <= 0) limit = 255;  // no limit known: Linux's
   if (name.size() + suffix.size() <= static_cast<size_t>(limit)) return path + suffix;
   const std::string unique = suffix + "-" + std::to_string(count++);
-  return folder + name.substr(0, static_cast<size_t>(limit) - std::min(unique.size(), static_cast<size_t>(limit))) +
-         unique;
+  size_t keep = static_cast<size_t>(limit) - std::min(unique.size(), static_cast<size_t>(limit));
+  while (keep > 0 && (static_cast<unsigned char>(name[keep]) & 0xC0) == 0x80) --keep;  // not inside a UTF-8 character
+  return folder + name.substr(0, keep) + unique;
 }
-
-}  // namespace
 
 std::string written_file(const std::string& path, bool* loop) {
   std::string p = path;

@@ -17,6 +17,10 @@ namespace lumis {
 /// default) removes the temporary file first.
 std::string write_file_atomically(const std::string& path, std::string_view bytes);
 
+/// The temporary name write_file_atomically uses beside `path`: `path.tmp-<pid>`, or, past the longest name the
+/// folder's file system allows, the name cut short (at a UTF-8 character's start) with a count to keep it unique.
+std::string temporary_name(const std::string& path);
+
 /// The file a write to `path` replaces: `path` itself, or the file its chain of symbolic links leads to (a relative
 /// link read from the link's own folder). *loop (when given) is set for a loop of links (40 hops).
 std::string written_file(const std::string& path, bool* loop = nullptr);

@@ -67,7 +67,11 @@ inline std::string output_file_problem(const std::string& path, const std::strin
   if (!fs::is_directory(folder, ec)) return via + folder + " is not a folder";
   if (::access(folder.c_str(), W_OK) != 0)
     return via + "cannot write in the folder " + folder + " (" + std::strerror(errno) + ")";
-  // Too long a name would fail only when written, after the work.
+  // Too long a name or path would fail only when written, after the work (the temporary name beside it is written
+  // first: `path.tmp-<pid>`, up to 24 bytes more, must fit in the 4096 bytes Linux takes).
+  if (file.size() + 24 >= 4096)
+    return via + "the path is " + std::to_string(file.size()) + " bytes long; lumis writes at most 4071 (the system "
+           "takes 4095, and the file is first written under a temporary name 24 bytes longer)";
   const std::string name = fs::path(file).filename().string();
   if (const long limit = ::pathconf(folder.c_str(), _PC_NAME_MAX); limit > 0 && name.size() > size_t(limit))
     return via + "the file name is " + std::to_string(name.size()) + " bytes long, more than the " +

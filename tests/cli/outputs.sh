@@ -36,6 +36,14 @@ expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1 -q -o "$T/$LONGNA
 [ -s "$T/$LONGNAME.png" ] || fail "the longest name was not written"
 [ -z "$(ls "$T" | grep -F .tmp-)" ] || fail "a temporary file was left: $(ls "$T" | grep -F .tmp-)"
 rm "$T/$LONGNAME.png"
+# A path the system takes, but whose temporary name (24 bytes longer) it would not: refused up front (it failed after
+# the render with "File name too long").
+DEEP=$T/$(printf 'd%.0s' $(seq 200))
+for _ in $(seq 19); do DEEP=$DEEP/$(printf 'd%.0s' $(seq 200)); done
+mkdir -p "$DEEP"
+DEEPFILE=$DEEP/$(printf 'f%.0s' $(seq $((4090 - ${#DEEP} - 5)))).png
+quick 2 "$LUMIS" "${LONG[@]}" -o "$DEEPFILE"
+has "bytes long; lumis writes at most 4071 (the system takes 4095, and the file is first written under a temporary"
 # An empty file or camera name (an unset shell variable) is a usage error, not "not given": it rendered the default
 # scene, or wrote <scene name>.png in the current folder over whatever was there.
 mkdir "$T/cwd"

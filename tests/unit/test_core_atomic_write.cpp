@@ -123,6 +123,19 @@ TEST_F(AtomicWrite, TheLongestNameTheFileSystemAllowsIsWritten) {
   EXPECT_EQ(listing(), (std::vector<std::string>{longest + ".png", other + ".png"}));
   EXPECT_NE(write_file_atomically(file(longest + "x.png"), "x").find("File name too long"), std::string::npos);
   EXPECT_EQ(listing().size(), 2u);
+  // A name of three-byte characters is cut at a character's start, not inside one (a leftover of a killed run
+  // would otherwise carry a name that is not UTF-8). After 0, 1 and 2 ASCII letters: at least two cut mid-character.
+  for (const std::string lead : {"", "a", "aa"}) {
+    std::string euros = lead;
+    while (euros.size() + 3 + 4 <= static_cast<size_t>(limit)) euros += "\xE2\x82\xAC";
+    const std::string tmp = fs::path(temporary_name(file(euros + ".png"))).filename().string();
+    EXPECT_LE(tmp.size(), static_cast<size_t>(limit));
+    const size_t cut = tmp.find(".tmp-");
+    ASSERT_NE(cut, std::string::npos);
+    EXPECT_EQ((cut - lead.size()) % 3, 0u) << tmp;  // whole euro signs before the suffix
+    EXPECT_EQ(write_file_atomically(file(euros + ".png"), "euro"), "");
+    EXPECT_EQ(content(euros + ".png"), "euro");
+  }
 }
 
 // A run killed mid-write (SIGKILL, power loss) leaves its temporary file; a later process may get the same pid and so
