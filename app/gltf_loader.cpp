@@ -100,7 +100,8 @@ GltfScene load_gltf(const std::string& path, const Mat4& transform, bool read_ca
   std::string nodes_drawn = "node";  // which nodes are drawn, for why_empty
   if (model.defaultScene >= 0 || !model.scenes.empty()) {
     const int s = model.defaultScene >= 0 ? model.defaultScene : 0;
-    nodes_drawn = "node of its default scene, " + indexed("scenes", s) + ",";
+    nodes_drawn = model.defaultScene >= 0 ? "node of its default scene, " + indexed("scenes", s) + ","
+                                          : "node of scenes[0] (the file names no default scene)";
     if (static_cast<size_t>(s) >= model.scenes.size())
       ctx.fail("scene", "scene index " + std::to_string(s) + " out of range");
     roots = model.scenes[s].nodes;

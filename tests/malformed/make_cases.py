@@ -454,6 +454,10 @@ case("gltf_default_scene_without_meshes", ".gltf",
      embed(*variant(lambda d: d["nodes"].append({"name": "empty"}) or
                     d.update(scenes=[{"nodes": [0]}, {"nodes": [1]}], scene=1))),
      "scene is empty: no node of its default scene, scenes[1], has a mesh (the file's 1 mesh is not drawn)")
+case("gltf_first_scene_without_meshes", ".gltf",
+     embed(*variant(lambda d: d["nodes"].append({"name": "empty"}) or d.pop("scene", None) or
+                    d.update(scenes=[{"nodes": [1]}, {"nodes": [0]}]))),
+     "scene is empty: no node of scenes[0] (the file names no default scene) has a mesh (the file's 1 mesh is not")
 # Valid glTF that tinygltf 2.7 refused: optional fields it requires, in parts lumis does not read. They render.
 case("gltf_skin_without_inverse_bind_matrices", ".gltf",
      embed(*variant(lambda d: d.update(skins=[{"joints": [0]}]) or d["nodes"][0].update(skin=0))),
