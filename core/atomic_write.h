@@ -10,9 +10,9 @@ namespace lumis {
 /// Writes `bytes` to `path` through a temporary file beside it (`path.tmp-<pid>`, a long name cut short to fit the
 /// file system's limit): every byte written and the file closed, each step checked, then renamed over `path` (over
 /// the file it links to, when `path` is a symbolic link: the link stays). So `path` keeps what it held before or
-/// holds all of `bytes`, never a part. Returns "" on success; otherwise the reason, one line without the temporary name ("cannot write:
-/// No space left on device (after 204800 of 615084 bytes)"), with the temporary file removed. A folder, pipe,
-/// device or socket at `path` is not replaced (an error, before anything is written); a file replaced keeps its
+/// holds all of `bytes`, never a part. Returns "" on success; otherwise the reason, one line without the temporary
+/// name ("cannot write: No space left on device (after 204800 of 615084 bytes)"), with the temporary file removed. A
+/// folder, pipe, device or socket at `path` is not replaced (an error, before anything is written); a file replaced keeps its
 /// permissions; a signal that ends the process mid-write (SIGINT, SIGTERM, SIGHUP, SIGQUIT, where left at their
 /// default) removes the temporary file first.
 std::string write_file_atomically(const std::string& path, std::string_view bytes);

@@ -100,8 +100,8 @@ grep -q "power light selection, balance MIS heuristic, 1 thread\.$" "$T/time/rep
   fail "equal time's thread count: $(grep Settings "$T/time/report.md")"
 grep -q '"time_budget": 0.05,' "$T/time/report.json" || fail "time budget not 0.05: $(grep time_budget "$T/time/report.json")"
 grep -q "\"source\": \"$D/reference.exr\"" "$T/time/report.json" || fail "given reference not recorded"
-REF_KEYS='import json, sys; r = json.load(open(sys.argv[1]))["reference"]; sys.exit(r != dict(r, channels=sys.argv[2]) or
-  sorted(r) != ["channels", "png", "source"])'
+REF_KEYS='import json, sys; r = json.load(open(sys.argv[1]))["reference"]
+sys.exit(r != dict(r, channels=sys.argv[2]) or sorted(r) != ["channels", "png", "source"])'
 python3 -c "$REF_KEYS" "$T/time/report.json" "R G B" ||
   fail "a given reference has a spp or hash, or no channels: $(grep -A4 '"reference"' "$T/time/report.json")"
 grep -qF "warning: --mis-light-probability only affects the mis integrator; ignored for bsdf, light" "$T/err" ||
