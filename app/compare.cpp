@@ -15,6 +15,7 @@
 #include "app/memory_check.h"
 #include "app/scene_error.h"
 #include "app/scene_loader.h"
+#include "core/file_ext.h"
 #include "core/image_io.h"
 #include "integrators/render.h"
 
@@ -71,6 +72,12 @@ int prepare(const CompareArgs& args, const std::string& scene_path, const fs::pa
                          (folder ? "a folder" : "not a regular file (a pipe, device or socket)") +
                          ", where this run writes a file; remove it or give another -o");
       }
+    // A link there is written through: its target must be writable too (a missing folder, a name too long), checked
+    // as render checks its -o, or the write fails after every render.
+    for (const std::string& f : outputs)
+      if (fs::is_symlink(dir / f, ec))
+        if (const std::string problem = output_file_problem((dir / f).string()); !problem.empty())
+          throw UsageError("compare: -o " + dir.string() + ": " + f + " there " + problem);
     if (!args.reference.empty())
       for (const std::string& f : output_file_names(names))
         if (fs::equivalent(dir / f, args.reference, ec))

@@ -147,6 +147,12 @@ grep -q "a.png: exists and is not a folder" "$T/err" || fail "-o a file: $(cat "
 grep -qi "filesystem error" "$T/err" && fail "raw exception: $(cat "$T/err")"
 expect 2 "$LUMIS" compare "$SCENE" --width 16 --height 16 --spp 1 -o "$T/a.png/sub"
 grep -q "a.png is not a folder" "$T/err" || fail "-o through a file: $(cat "$T/err")"
+# A link there into a missing folder is refused up front too (a helper's finding: it failed after the renders).
+mkdir -p "$T/link" && ln -s nodir/x.png "$T/link/bsdf.png"
+expect 2 "$LUMIS" compare "$SCENE" --width 16 --height 16 --spp 1 --integrators bsdf -o "$T/link"
+grep -qF "compare: -o $T/link: bsdf.png there links to $T/link/nodir/x.png, but the folder $T/link/nodir does not" \
+  "$T/err" || fail "a link into a missing folder: $(cat "$T/err")"
+[ ! -e "$T/link/reference.exr" ] || fail "rendered before refusing the link"
 # A folder or a pipe where one of its files goes: refused up front (once it failed after every render).
 mkdir -p "$T/slot/bsdf.png" "$T/pipe"
 mkfifo "$T/pipe/reference.json"
@@ -368,9 +374,13 @@ rendered_for "$T/moved/inc.json" "$T/in-inc.json" "cached by an older lumis, whi
 # A run that fails part way leaves no report of the earlier run beside images it replaced: the report goes first.
 SMALL8=(--width 8 --height 8 --spp 1 --reference-spp 4 --integrators bsdf,nee_mis -q)
 expect 0 "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/rerun"
-# nee_mis's image cannot be written now: a link into a missing folder (a folder in its place is refused up front)
-rm "$T/rerun/nee_mis.exr" && ln -s "$T/no-such-folder/nee_mis.exr" "$T/rerun/nee_mis.exr"
-expect 1 "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/rerun"
+# The variants' pictures cannot all be written now: a file-size limit of 1 KiB lets the reference's small PNG through
+# and stops a variant's (a folder in its place, or a link into a missing folder, is refused up front).
+(trap '' XFSZ; ulimit -f 1 && exec "$LUMIS" compare "$T/cams.gltf" "${SMALL8[@]}" -o "$T/rerun") 2>"$T/err"
+code=$?
+[ "$code" = 1 ] || fail "a rerun under a file-size limit exited $code, expected 1: $(cat "$T/err")"
+grep -qE "/rerun/(error-)?(bsdf|nee_mis)\.(exr|png): cannot write" "$T/err" ||
+  fail "the rerun did not fail at a variant's picture: $(cat "$T/err")"
 for f in report.json report.md index.html; do [ ! -e "$T/rerun/$f" ] || fail "a failed rerun left the old $f"; done
 [ -s "$T/rerun/reference.exr" ] || fail "a failed rerun removed the cached reference"
 
