@@ -12,9 +12,9 @@ namespace lumis {
 /// the file it links to, when `path` is a symbolic link: the link stays). So `path` keeps what it held before or
 /// holds all of `bytes`, never a part. Returns "" on success; otherwise the reason, one line without the temporary
 /// name ("cannot write: No space left on device (after 204800 of 615084 bytes)"), with the temporary file removed. A
-/// folder, pipe, device or socket at `path` is not replaced (an error, before anything is written); a file replaced keeps its
-/// permissions; a signal that ends the process mid-write (SIGINT, SIGTERM, SIGHUP, SIGQUIT, where left at their
-/// default) removes the temporary file first.
+/// folder, pipe, device or socket at `path` is not replaced (an error, before anything is written); a file replaced
+/// keeps its permissions; a signal that ends the process mid-write (SIGINT, SIGTERM, SIGHUP, SIGQUIT, where left at
+/// their default) removes the temporary file first.
 std::string write_file_atomically(const std::string& path, std::string_view bytes);
 
 /// The temporary name write_file_atomically uses beside `path`: `path.tmp-<pid>`, or, past the longest name the
