@@ -13,8 +13,7 @@ namespace {
 
 class SphereLight final : public Light {
  public:
-  SphereLight(Vec3 center, float radius, Color radiance)
-      : c_(center), r_(radius), inv_r_(radius > 0 ? 1 / radius : 0.0f), radiance_(radiance) {}
+  SphereLight(Vec3 center, float radius, Color radiance) : c_(center), r_(radius), radiance_(radiance) {}
 
   /// Solid angle at ctx.p: uniform in the subtended cap (outside), area sampling converted (inside).
   std::optional<LightSample> sample(const LightSampleContext& ctx, Vec2 u) const override {
@@ -23,9 +22,10 @@ class SphereLight final : public Light {
     if (!(r_ > 0)) return std::nullopt;
     if (d2 <= r_ * r_) return sample_area(ctx, u);
     const sphere_cap::Setup s = sphere_cap::setup(r_ * r_, d2, u);
-    const sphere_cap::Point q = sphere_cap::finish(c_, r_, inv_r_, ctx.p, to_c, d2, s);
-    return std::make_optional<LightSample>(dot(q.n, -q.wi) > 0 ? radiance_ : Color{}, q.wi, q.t,
-                                           1 / (2 * kPi * s.one_minus_cos_max), q.p, q.n, point_error(ctx.p, q.t));
+    const sphere_cap::Point q = sphere_cap::finish(ctx.p, to_c, r_, s);
+    // Every direction in the cap meets the sphere first on its near side, which faces the receiver: it emits.
+    return std::make_optional<LightSample>(radiance_, q.wi, q.t, 1 / (2 * kPi * s.one_minus_cos_max), q.p, q.n,
+                                           point_error(ctx.p, q.t));
   }
 
   /// sample() for n receivers: the cap samples side by side (lights/sphere_light_batch.cpp), the same numbers.
@@ -36,7 +36,7 @@ class SphereLight final : public Light {
     }
     const int level = simd_level();
     sphere_cap::Batch b;
-    b.c = c_, b.r = r_, b.inv_r = inv_r_;
+    b.c = c_, b.r = r_;
     for (int begin = 0; begin < n; begin += sphere_cap::Batch::kChunk) {
       const int m = std::min(sphere_cap::Batch::kChunk, n - begin);
       for (int k = 0; k < m; ++k) {
@@ -53,7 +53,7 @@ class SphereLight final : public Light {
           continue;
         }
         ok[i] = true;
-        out[i] = LightSample(b.emits[k] ? radiance_ : Color{}, {b.wx[k], b.wy[k], b.wz[k]}, b.t[k],
+        out[i] = LightSample(radiance_, {b.wx[k], b.wy[k], b.wz[k]}, b.t[k],
                              1 / (2 * kPi * b.one_minus_cos_max[k]), {b.lx[k], b.ly[k], b.lz[k]},
                              {b.nx[k], b.ny[k], b.nz[k]}, point_error(ctx[i].p, b.t[k]));
       }
@@ -114,7 +114,7 @@ class SphereLight final : public Light {
   }
 
   Vec3 c_;
-  float r_, inv_r_;
+  float r_;
   Color radiance_;
 };
 

@@ -16,12 +16,11 @@ namespace {
     const Vec3 to_c = b.c - p;
     const float d2 = length_squared(to_c);
     const Setup s = setup(r2, d2, {b.ux[k], b.uy[k]});
-    const Point q = finish(b.c, r, b.inv_r, p, to_c, d2, s);
+    const Point q = finish(p, to_c, r, s);
     b.wx[k] = q.wi.x, b.wy[k] = q.wi.y, b.wz[k] = q.wi.z, b.t[k] = q.t;
     b.lx[k] = q.p.x, b.ly[k] = q.p.y, b.lz[k] = q.p.z;
     b.nx[k] = q.n.x, b.ny[k] = q.n.y, b.nz[k] = q.n.z;
     b.one_minus_cos_max[k] = s.one_minus_cos_max;
-    b.emits[k] = dot(q.n, -q.wi) > 0;
   }
 }
 

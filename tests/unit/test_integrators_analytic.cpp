@@ -4,18 +4,20 @@
 //    every variant against the `bsdf` variant's image;
 //  - closed sphere of albedo 0.5 emitting 0.5 inside: radiance 1 everywhere (pbrt-v4's analytic test);
 //  - sphere light (radius r, radiance L, height h) over a diffuse plane (albedo rho), direct lighting only: the
-//    point straight below has radiance rho L (r/h)^2 (at the height rays leave from: h minus their offset);
+//    point straight below has radiance rho L (r/h)^2 (at the height rays leave from: h minus their offset); also
+//    for `light` and `nee_mis` with radii down to 1e-15 of the distance, the light off to the side;
 //  - a large emitting square (radiance L) over a diffuse plane, half of it cut out (alphaMode MASK) along a diagonal
 //    through the zenith, direct lighting only: by symmetry half of pi L reaches the point below, radiance rho L / 2.
 // Also the depth AOV against the distance to a plane.
 // Each check is a z-test of a region mean against the exact value, using the film's own variance estimate.
-// Level: alpha = 0.01 for the whole file, Sidak-split over all 106 z-tests (35 regions x 3 channels, and the
+// Level: alpha = 0.01 for the whole file, Sidak-split over all 124 z-tests (41 regions x 3 channels, and the
 // silhouette's coverage), so the file fails by chance with probability below 1% for a correct renderer at any
 // seed; seeds are fixed, so a pass is reproducible. Bias of the truncated series (max depth) is below 1e-6 and
 // included in the expectation.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "integrators/integrator.h"
 #include "integrators/render.h"
@@ -34,7 +36,7 @@ Camera make_camera(Vec3 from, Vec3 to, float fov) {
   c.fov_y_degrees = fov;
   return c;
 }
-constexpr int kRegionTests = 106;  // 35 regions x 3 channels + 1 (Bonferroni-safe under dependence)
+constexpr int kRegionTests = 124;  // 41 regions x 3 channels + 1 (Bonferroni-safe under dependence)
 
 struct Case {
   std::string integrator;
@@ -214,34 +216,67 @@ TEST(IntegratorAnalytic, ClosedEmittingSphere) {
 
 // --- Sphere light over a plane, direct lighting ----------------------------------------------------------------
 
-TEST(IntegratorAnalytic, SphereLightOverPlane) {
-  const float r = 0.25f, h = 1.0f, rho = 0.6f;
-  const Color radiance(8.0f);
-  Scene scene;
-  scene.materials.push_back(make_diffuse_material(Color(rho)));
+// A sphere light (centre c, radius r, radiance L) over a diffuse plane of albedo rho, seen through a narrow field of
+// view at the origin.
+constexpr float kPlaneHalfSide = 500, kRho = 0.6f;
+void build_sphere_light_over_plane(Scene& scene, Vec3 c, float r, Color radiance) {
+  scene.materials.push_back(make_diffuse_material(Color(kRho)));
   TriangleMesh plane;
-  const float e = 500;
+  const float e = kPlaneHalfSide;
   plane.positions = {{-e, 0, -e}, {-e, 0, e}, {e, 0, e}, {e, 0, -e}};  // counter-clockwise seen from +y
   plane.indices = {0, 1, 2, 0, 2, 3};
   plane.material = 0;
   scene.geometry.add_mesh(std::move(plane));
-  scene.lights.push_back(make_sphere_light({0, h, 0}, r, radiance));
-  scene.geometry.add_sphere(Sphere{{0, h, 0}, r, -1, 0});
+  scene.lights.push_back(make_sphere_light(c, r, radiance));
+  scene.geometry.add_sphere(Sphere{c, r, -1, 0});
   // Look at the origin from the side, through a very narrow field of view: the footprint is about 1e-4 wide.
   scene.camera = make_camera({2, 1, 0.5f}, {0, 0, 0}, 0.005f);
   scene.settings.width = scene.settings.height = 4;
   scene.settings.max_depth = 1;
   scene.finalize();
-  // Every ray from the plane, and every light sample (light_context, integrators/path_vertex.h), starts at the
-  // hit point offset by its error bound, e kErrorScale = 1.9e-3 above the plane: the radiance there is
-  // rho L (r / (h - d))^2, 0.38 % above the value on the plane, which the light-sampling variants resolve (z = 100
-  // against it).
-  const double d = double(e) * kErrorScale, expected = rho * radiance.x * (r / (h - d)) * (r / (h - d));
+}
+// Every ray from the plane, and every light sample (light_context, integrators/path_vertex.h), starts at the hit
+// point offset by its error bound, d = e kErrorScale = 1.9e-3 above the plane: the radiance there is
+// rho / pi x pi L (r / D)^2 cos = rho L r^2 (c.y - d) / D^3, D the distance from there to c; below a light at height
+// 1 that is 0.38 % above the value on the plane, which the light-sampling variants resolve (z = 100 against it).
+double radiance_at_origin(Vec3 c, double r, double radiance) {
+  const double d = double(kPlaneHalfSide) * kErrorScale, h = c.y - d;
+  const double dist = std::sqrt(double(c.x) * c.x + h * h + double(c.z) * c.z);
+  return kRho * radiance * r * r * h / (dist * dist * dist);
+}
+
+TEST(IntegratorAnalytic, SphereLightOverPlane) {
+  const float r = 0.25f;
+  const Color radiance(8.0f);
+  Scene scene;
+  build_sphere_light_over_plane(scene, {0, 1, 0}, r, radiance);
+  const double expected = radiance_at_origin({0, 1, 0}, r, radiance.x);
   for (const Case& c : all_variants()) {
     const uint32_t spp = c.integrator == "uniform" ? 20000 : 4000;
     const Film film = render_scene(scene, c, spp);
     expect_region(test::region_mean(film, [](int, int) { return true; }), expected,
                   c.label() + " plane below light");
+  }
+}
+
+// The same with spheres 1e4 to 1e15 times smaller than their distance, off to the side, radiance scaled by 1 / r^2:
+// `light` and `nee_mis` sample the cap and get it, whether or not floats resolve the sphere. The samples' normals used
+// to be (point - centre) / r, of any length and direction there, and the shadow rays' ends, offset along them, went
+// astray (8 times too dark at 1e-10). The variants that must hit a light to see it (uniform, bsdf, mis) cannot below
+// ~1e-6 of the distance, where Embree's sphere test rounds; docs/lights.md says so.
+TEST(IntegratorAnalytic, TinySphereLightsOverPlane) {
+  const Vec3 c{0.3f, 1, -0.2f};
+  for (float r : {1e-4f, 1e-8f, 1e-15f}) {
+    const Color radiance(8.0f * (0.25f / r) * (0.25f / r));
+    Scene scene;
+    build_sphere_light_over_plane(scene, c, r, radiance);
+    const double expected = radiance_at_origin(c, r, radiance.x);
+    char what[64];
+    std::snprintf(what, sizeof what, " plane near a light of radius %g", r);
+    for (const Case& c : {Case{"light", SamplerType::Sobol}, Case{"nee_mis", SamplerType::Stratified}}) {
+      const Film film = render_scene(scene, c, 64);
+      expect_region(test::region_mean(film, [](int, int) { return true; }), expected, c.label() + what);
+    }
   }
 }
 

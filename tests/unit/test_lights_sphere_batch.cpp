@@ -55,7 +55,7 @@ TEST(SphereLightBatch, EveryKernelEqualsSampleOneReceiverAtATime) {
       const std::vector<LightSampleContext> ctx = receivers(n, seed);
       const std::vector<Vec2> u = numbers(n, seed);
       sphere_cap::Batch b;
-      b.c = kCenter, b.r = kRadius, b.inv_r = 1 / kRadius;
+      b.c = kCenter, b.r = kRadius;
       for (int k = 0; k < n; ++k)
         b.px[k] = ctx[k].p.x, b.py[k] = ctx[k].p.y, b.pz[k] = ctx[k].p.z, b.ux[k] = u[k].x, b.uy[k] = u[k].y;
       sphere_cap::run(b, n, level);
@@ -70,7 +70,6 @@ TEST(SphereLightBatch, EveryKernelEqualsSampleOneReceiverAtATime) {
         ASSERT_TRUE(same(ls->p_light, {b.lx[k], b.ly[k], b.lz[k]})) << at;
         ASSERT_TRUE(same(ls->n_light, {b.nx[k], b.ny[k], b.nz[k]})) << at;
         ASSERT_TRUE(same(ls->pdf, 1 / (2 * kPi * b.one_minus_cos_max[k]))) << at;
-        ASSERT_EQ(ls->le.x > 0, b.emits[k] != 0) << at;
       }
     }
 }
