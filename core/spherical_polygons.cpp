@@ -6,6 +6,7 @@
 // Failure (nullopt) depends only on the geometry (p and the polygon), never on u, so a caller can ask "would
 // sampling succeed from here?" with any u and reproduce the choice in its pdf. Arvo's steps themselves are in
 // core/spherical_triangle.h, shared with the batch kernel that mesh lights use.
+#include <algorithm>
 #include <cmath>
 
 #include "core/spherical_triangle.h"
@@ -22,6 +23,7 @@ struct SphericalRect {
   D3 o, x, y, z;
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0, z0 = 0;
   double b0 = 0, b1 = 0, k = 0, s = 0;
+  bool resolved = false;  ///< s can reach kMinSolidAngle by the bound below (smaller s is rounding noise)
 };
 
 SphericalRect make_spherical_rect(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey) {
@@ -44,6 +46,14 @@ SphericalRect make_spherical_rect(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey) {
   r.x1 = r.x0 + exl;
   r.y1 = r.y0 + eyl;
   if (!(r.z0 < 0)) return r;  // receiver in the plane: solid angle 0 or 2 pi, both degenerate
+  // Every point of the rectangle is at least dmin away, so its solid angle is at most area |z0| / dmin^3. Below
+  // kMinSolidAngle by that bound, the four angles below differ from pi / 2 by less than their rounding (the cross
+  // products of nearly parallel corners): a rectangle of 1e-13 at 3 units came out at 1e-6 to 3e-6 sr from one
+  // receiver in twenty, not 1e-27, and rendered 1e20 times too bright. Sampling then fails (area sampling instead),
+  // whatever s says.
+  const double dx = std::max({0.0, r.x0, -r.x1}), dy = std::max({0.0, r.y0, -r.y1});
+  const double dmin2 = r.z0 * r.z0 + dx * dx + dy * dy;
+  r.resolved = exl * eyl * -r.z0 >= kMinSolidAngle * dmin2 * std::sqrt(dmin2);
   const D3 v00{r.x0, r.y0, r.z0}, v01{r.x0, r.y1, r.z0}, v10{r.x1, r.y0, r.z0}, v11{r.x1, r.y1, r.z0};
   // Normals of the planes through the origin and each edge, all pointing into the pyramid.
   const D3 n0 = dnormalize(dcross(v00, v10)), n1 = dnormalize(dcross(v10, v11));
@@ -100,13 +110,13 @@ float rectangle_solid_angle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey) {
 
 std::optional<float> spherical_rectangle_pdf(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey) {
   const SphericalRect r = make_spherical_rect(p, origin, ex, ey);
-  if (!(r.s >= kMinSolidAngle && r.s <= kMaxSolidAngle)) return std::nullopt;
+  if (!(r.resolved && r.s >= kMinSolidAngle && r.s <= kMaxSolidAngle)) return std::nullopt;
   return static_cast<float>(1 / r.s);
 }
 
 std::optional<SphericalSample> sample_spherical_rectangle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey, Vec2 u) {
   const SphericalRect r = make_spherical_rect(p, origin, ex, ey);
-  if (!(r.s >= kMinSolidAngle && r.s <= kMaxSolidAngle)) return std::nullopt;
+  if (!(r.resolved && r.s >= kMinSolidAngle && r.s <= kMaxSolidAngle)) return std::nullopt;
   // u.x picks the x of the point through the area of the sub-rectangle left of it (the angle au)...
   const double au = u.x * r.s + r.k;
   const double fu = (std::cos(au) * r.b0 - r.b1) / std::sin(au);

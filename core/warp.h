@@ -80,7 +80,8 @@ std::optional<float> spherical_triangle_pdf(Vec3 p, Vec3 a, Vec3 b, Vec3 c);
 Vec2 invert_spherical_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, Vec3 w);
 
 /// Solid angle of the parallelogram-free rectangle origin + s ex + t ey (s, t in [0,1], ex orthogonal to ey)
-/// seen from p, by the four-angle formula (sum of interior angles - 2 pi).
+/// seen from p, by the four-angle formula (sum of interior angles - 2 pi): rounding noise for rectangles far
+/// smaller than their distance (below ~1e-9 sr), which sample_spherical_rectangle therefore refuses.
 float rectangle_solid_angle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey);
 /// Urena et al. 2013: uniform direction in the solid angle of rectangle (origin, ex, ey) seen from p.
 /// Fails (nullopt) when the solid angle is below 1e-6 sr or above 2 pi - 1e-3 sr (too small or too close to a
