@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "app/scene_loader.h"
 #include "core/file_ext.h"
 #include "core/image_io.h"
+#include "integrators/integrator.h"
 #include "integrators/render.h"
 
 namespace lumis {
@@ -153,6 +155,8 @@ int run_compare(const CompareArgs& args) {
   // used then, whatever the variants.
   for (const std::string& w : unused_overrides(args.overrides, names, args.reference.empty()))
     std::cerr << "lumis compare: warning: " << w << "\n";
+  if (std::any_of(names.begin(), names.end(), finds_lights_by_hitting))
+    for (const std::string& w : scene->small_lights) std::cerr << w << "\n";
   if (!args.reference.empty() && args.reference_spp)
     std::cerr << "lumis compare: warning: --reference-spp only affects a rendered reference; "
                  "ignored with --reference\n";

@@ -1,6 +1,9 @@
 // JSON scene pieces shared by shapes and lights: file paths, textures, materials, transforms, camera framing.
 #include "app/json_scene.h"
 
+#include <algorithm>
+#include <cstdio>
+
 #include "app/scene_error.h"
 #include "core/image_io.h"
 
@@ -161,6 +164,40 @@ Camera frame_bounds(const Bounds3& bounds, float aspect) {
 void frame_camera(Scene& scene, const Bounds3& bounds) {
   scene.framed = bounds;
   scene.camera = frame_bounds(bounds, float(scene.settings.width) / float(scene.settings.height));
+}
+
+JsonSceneBuilder::LightSize JsonSceneBuilder::quad_light_size(const JsonNode& node, Vec3 origin, Vec3 edge_u,
+                                                              Vec3 edge_v, bool shape) {
+  const float lu = length(edge_u), lv = length(edge_v);
+  const bool u_shorter = lu <= lv;
+  const char* kind = shape ? (u_shorter ? "emitting quad's edge_u" : "emitting quad's edge_v")
+                           : (u_shorter ? "quad light's edge_u" : "quad light's edge_v");
+  return {node[u_shorter ? "edge_u" : "edge_v"], kind, origin + edge_u * 0.5f + edge_v * 0.5f, u_shorter ? lu : lv,
+          true};
+}
+
+void JsonSceneBuilder::note_small_lights() {
+  const Bounds3 b = scene_.geometry.bounds();
+  for (const LightSize& l : light_sizes_) {
+    // The farthest a ray's origin can be: a corner of the geometry's box, or the camera.
+    const Vec3 c = l.centre;
+    double span = length(scene_.camera.from - c);
+    for (int k = 0; k < (b.empty() ? 0 : 8); ++k) {
+      const Vec3 corner{(k & 1 ? b.hi : b.lo).x, (k & 2 ? b.hi : b.lo).y, (k & 4 ? b.hi : b.lo).z};
+      span = std::max(span, static_cast<double>(length(corner - c)));
+    }
+    const double scale = std::max(span, l.quad ? static_cast<double>(max_component(abs(c))) : 0.0);
+    if (!(l.size < kMinLightSize * scale)) continue;
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "warning: the %s, %g, is less than %g of the %s (%.4g): rays miss or hit a light this small as "
+                  "float rounding falls, so uniform, bsdf and mis can render it too dark or with fireflies (light "
+                  "and nee_mis sample it directly and are not affected)",
+                  l.kind, l.size, kMinLightSize,
+                  l.quad && scale > span ? "distance from the origin to its centre" : "span of the scene around it",
+                  scale);
+    scene_.small_lights.push_back(l.at.file() + ":" + l.at.pointer() + ": " + text);
+  }
 }
 
 }  // namespace lumis

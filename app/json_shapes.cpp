@@ -80,6 +80,7 @@ void JsonSceneBuilder::add_sphere_shape(const JsonNode& node) {
   if (!is_black(emission)) {
     s.light = static_cast<int>(scene_.lights.size());
     scene_.lights.push_back(make_sphere_light(s.center, s.radius, emission));
+    light_sizes_.push_back({node["radius"], "emitting sphere's radius", s.center, s.radius, false});
   }
   bounds_.expand(s.center - Vec3(s.radius));
   bounds_.expand(s.center + Vec3(s.radius));
@@ -101,6 +102,7 @@ void JsonSceneBuilder::add_quad_shape(const JsonNode& node) {
   if (emission.emits() && !emission.texture && !emission.two_sided) {
     mesh.light = static_cast<int>(scene_.lights.size());
     scene_.lights.push_back(make_quad_light(q.origin, q.edge_u, q.edge_v, emission.factor, sampling));
+    light_sizes_.push_back(quad_light_size(node, q.origin, q.edge_u, q.edge_v, true));
     emission = {};
   }
   add_mesh(std::move(mesh), emission,
@@ -197,6 +199,7 @@ void JsonSceneBuilder::add_light(const JsonNode& node) {
     if (!(s.radius > 0)) node["radius"].fail_expected("a positive radius");
     s.light = index;
     scene_.lights.push_back(make_sphere_light(s.center, s.radius, parse_radiance(node["radiance"])));
+    light_sizes_.push_back({node["radius"], "sphere light's radius", s.center, s.radius, false});
     bounds_.expand(s.center - Vec3(s.radius));
     bounds_.expand(s.center + Vec3(s.radius));
     scene_.geometry.add_sphere(s);
@@ -205,6 +208,7 @@ void JsonSceneBuilder::add_light(const JsonNode& node) {
     const QuadGeometry q = parse_quad(node);
     const Color radiance = parse_radiance(node["radiance"]);
     scene_.lights.push_back(make_quad_light(q.origin, q.edge_u, q.edge_v, radiance, quad_sampling(node)));
+    light_sizes_.push_back(quad_light_size(node, q.origin, q.edge_u, q.edge_v, false));
     TriangleMesh mesh = quad_mesh(q);
     mesh.light = index;
     add_mesh(std::move(mesh), {}, TriangleSampling::SphericalTriangle);

@@ -16,6 +16,7 @@
 #include "app/scene_loader.h"
 #include "core/file_ext.h"
 #include "core/image_io.h"
+#include "integrators/integrator.h"
 #include "integrators/render.h"
 
 namespace lumis {
@@ -90,6 +91,8 @@ int run_render(const RenderArgs& args) {
   RenderSettings& s = scene->settings;
   for (const std::string& w : unused_overrides(args.overrides, {s.integrator}))
     std::cerr << "lumis: warning: " << w << "\n";
+  if (finds_lights_by_hitting(s.integrator))
+    for (const std::string& w : scene->small_lights) std::cerr << w << "\n";
   // Linear formats take no exposure; 0 (a script's default, `--exposure "${EV:-0}"`) changes nothing to warn of.
   if (args.overrides.exposure && *args.overrides.exposure != 0 && (ext == ".exr" || ext == ".hdr"))
     std::cerr << "lumis: warning: --exposure only affects .png, .jpg and .jpeg output; ignored for " << out << "\n";

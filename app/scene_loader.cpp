@@ -199,6 +199,7 @@ std::unique_ptr<Scene> load_json_scene(const std::string& text, const std::strin
   if (!root.has("camera")) frame_camera(*scene, builder.bounds());
   const bool near = root.has("camera") && root["camera"].has("near");
   check_extent(*scene, path, root.has("camera") ? "/camera/from" : "", near ? "/camera/near" : "");
+  builder.note_small_lights();
   scene->finalize();
   return scene;
 }

@@ -9,6 +9,10 @@ const std::vector<std::string>& integrator_names() {
   return names;
 }
 
+bool finds_lights_by_hitting(const std::string& integrator) {
+  return integrator == "uniform" || integrator == "bsdf" || integrator == "mis";
+}
+
 std::unique_ptr<Integrator> make_integrator(const RenderSettings& s) {
   if (s.integrator == "uniform") return make_uniform_integrator(s);
   if (s.integrator == "bsdf") return make_bsdf_integrator(s);

@@ -47,6 +47,9 @@ class Integrator {
 
 /// The variant names, in the order users see them.
 const std::vector<std::string>& integrator_names();
+/// Whether a variant sees lights only where its rays hit them (uniform, bsdf, mis): a light too small for a float ray
+/// test to hit (Scene::small_lights) escapes it, where light and nee_mis sample the light itself.
+bool finds_lights_by_hitting(const std::string& integrator);
 /// Build the variant `settings.integrator`; throws std::invalid_argument naming the valid ones.
 std::unique_ptr<Integrator> make_integrator(const RenderSettings& settings);
 

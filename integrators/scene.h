@@ -54,6 +54,9 @@ struct Scene {
   /// Set when the file has no camera and `camera` was generated to frame these bounds for the film's aspect ratio
   /// (app/json_scene.h, frame_bounds): a new image size calls for framing them again.
   std::optional<Bounds3> framed;
+  /// Warnings ("FILE:POINTER: warning: ...") for lights too small against the scene for a ray to hit them
+  /// reliably; only the variants that find lights by hitting them (finds_lights_by_hitting) render those wrong.
+  std::vector<std::string> small_lights;
 
   /// After all geometry and lights are added: build the BVH, preprocess lights, build the light selector.
   void finalize();

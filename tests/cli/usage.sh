@@ -134,6 +134,25 @@ lacks "warning"
 expect 0 "$LUMIS" render "$SCENE" --width 4 --height 4 --spp 1 -q --exposure 0 -o "$T/e2.exr"  # changes nothing
 lacks "warning"
 
+# A light too small for rays to hit (a radius of 1e-5 where the scene spans 4.6) is named in a warning by render
+# with the variants that must hit lights (uniform, bsdf, mis), and by compare once when its variants include one;
+# not with light and nee_mis, which sample the light itself.
+cat > "$T/tiny.json" <<'EOF'
+{"camera": {"from": [0, 3, 3], "to": [0, 0, 0]}, "materials": {"m": {"type": "diffuse"}},
+ "shapes": [{"type": "quad", "origin": [-2, 0, 2], "edge_u": [4, 0, 0], "edge_v": [0, 0, -4], "material": "m"}],
+ "lights": [{"type": "sphere", "center": [0, 2, -1.5], "radius": 1e-5, "radiance": [1e10, 1e10, 1e10]}]}
+EOF
+TINY="$T/tiny.json:/lights/0/radius: warning: the sphere light's radius, 1e-05, is less than 0.0001 of the span"
+for it in uniform bsdf mis light nee_mis; do
+  expect 0 "$LUMIS" render "$T/tiny.json" --width 4 --height 4 --spp 1 -q --integrator $it -o "$T/tiny.exr"
+  case $it in light | nee_mis) lacks "warning" ;; *) has "$TINY" ;; esac
+done
+expect 0 "$LUMIS" compare "$T/tiny.json" --width 4 --height 4 --spp 1 --reference-spp 4 -q -o "$T/tiny-compare"
+[ "$(grep -cF "$TINY" "$T/err")" = 1 ] || { cat "$T/err"; fail "compare did not name the tiny light once"; }
+expect 0 "$LUMIS" compare "$T/tiny.json" --width 4 --height 4 --spp 1 --reference-spp 4 -q --integrators light,nee_mis \
+  -o "$T/tiny-compare2"
+lacks "warning"
+
 # bench renders a fixed number of samples, writes no image and measures through each scene's default camera, so
 # --time, --exposure and --camera cannot take effect there: they are refused by name before anything is measured
 # (--time and --exposure were once accepted and ignored; --camera got CLI11's "argument was not expected"), and
