@@ -66,6 +66,9 @@ Vec2 invert_uniform_triangle(Vec2 b);
 
 /// Solid angle of the triangle (a, b, c) seen from p (Van Oosterom & Strackee 1983).
 float triangle_solid_angle(Vec3 p, Vec3 a, Vec3 b, Vec3 c);
+/// Solid angle of the parallelogram origin + s ex + t ey (s, t in [0,1]) seen from p, its corners taken relative to
+/// p in double (edges far below an ulp of the origin keep their size); area |cos| / d^2 for edges below 1e-3 of d.
+float parallelogram_solid_angle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey);
 struct SphericalSample {
   Vec3 w;       ///< unit world direction from p
   float pdf;    ///< solid-angle density (1 / solid angle)
@@ -80,8 +83,8 @@ std::optional<float> spherical_triangle_pdf(Vec3 p, Vec3 a, Vec3 b, Vec3 c);
 Vec2 invert_spherical_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c, Vec3 w);
 
 /// Solid angle of the parallelogram-free rectangle origin + s ex + t ey (s, t in [0,1], ex orthogonal to ey)
-/// seen from p, by the four-angle formula (sum of interior angles - 2 pi): rounding noise for rectangles far
-/// smaller than their distance (below ~1e-9 sr), which sample_spherical_rectangle therefore refuses.
+/// seen from p, by the four-angle formula (sum of interior angles - 2 pi): rounding noise (of order 1e-6 sr) for
+/// rectangles far smaller than their distance, which sample_spherical_rectangle therefore refuses.
 float rectangle_solid_angle(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey);
 /// Urena et al. 2013: uniform direction in the solid angle of rectangle (origin, ex, ey) seen from p.
 /// Fails (nullopt) when the solid angle is below 1e-6 sr or above 2 pi - 1e-3 sr (too small or too close to a

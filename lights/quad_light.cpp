@@ -75,8 +75,7 @@ class QuadLight final : public Light {
     if (length_squared(ctx.n) > 0 && dot(ctx.n, a - ctx.p) <= 0 && dot(ctx.n, b - ctx.p) <= 0 &&
         dot(ctx.n, c - ctx.p) <= 0 && dot(ctx.n, d - ctx.p) <= 0)
       return 0;
-    const float omega = triangle_solid_angle(ctx.p, a, b, c) + triangle_solid_angle(ctx.p, a, c, d);
-    return omega * luminance(radiance_);
+    return parallelogram_solid_angle(ctx.p, o_, eu_, ev_) * luminance(radiance_);
   }
 
   /// pi x area x luminance (Lambertian, one side).

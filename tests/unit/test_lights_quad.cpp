@@ -128,9 +128,10 @@ TEST(QuadLight, SolidAngleMatchesFourAngleFormula) {
 
 // Quads far smaller than their distance, up to 1e13 times (edges of 1e-13 at ~2.5 units), from 121 receivers on a
 // grid below: both methods' mean 1/pdf is the solid angle, area cos / d^2 for the squares (exact to 1e-9 at these
-// sizes), and the methods agree for a 0.5 x 1e-12 sliver. The four-angle formula is rounding noise there: it made
-// the 1e-13 square ~1e-6 sr from one receiver in twenty, 1e20 times too bright. Area sampling of such a quad has no
-// variance to speak of: 1e-4 relative.
+// sizes), and so is the selection importance over luminance; the methods agree for a 0.5 x 1e-12 sliver. The
+// four-angle formula is rounding noise there: it made the 1e-13 square ~1e-6 sr from one receiver in twenty, 1e20
+// times too bright; and the importance, from corners summed in float, was 0 (never chosen). Area sampling of such a
+// quad has no variance to speak of: 1e-4 relative.
 TEST(QuadLight, TinyQuadsKeepTheirSolidAngle) {
   const Vec3 o{0, 2, -1.5f};
   struct Size {
@@ -140,17 +141,19 @@ TEST(QuadLight, TinyQuadsKeepTheirSolidAngle) {
                  Size{0.5f, 1e-12f}})
     for (int i = 0; i < 121; ++i) {
       const LightSampleContext ctx{{0.4f * float(i % 11) - 2, 0, 0.4f * float(i / 11) - 2}, {0, 1, 0}};
-      double mean[2];
+      double mean[2], importance = 0;
       int k = 0;
       for (QuadSampling m : {QuadSampling::Area, QuadSampling::SphericalRectangle}) {
         const auto light = make_quad_light(o, {e.u, 0, 0}, {0, 0, e.v}, kRadiance, m);
         mean[k++] = test::mc_solid_angle(*light, ctx, Pcg32(43, 3), 100).mean;
+        importance = light->importance(ctx) / luminance(kRadiance);
       }
       const Vec3 to = o - ctx.p;
       const double d2 = length_squared(to), expected = double(e.u) * e.v * (to.y / std::sqrt(d2)) / d2;
       ASSERT_NEAR(mean[1] / mean[0], 1.0, 1e-4) << "edges " << e.u << " x " << e.v << ", receiver " << i;
       if (e.u == e.v) {
         ASSERT_NEAR(mean[1] / expected, 1.0, 1e-4) << "edges " << e.u << ", receiver " << i;
+        ASSERT_NEAR(importance / expected, 1.0, 1e-4) << "importance, edges " << e.u << ", receiver " << i;
       }
     }
 }
