@@ -190,7 +190,7 @@ void JsonSceneBuilder::note_small_lights() {
     if (!(l.size < kMinLightSize * scale)) continue;
     char text[512];
     std::snprintf(text, sizeof text,
-                  "warning: the %s, %g, is less than %g of the %s (%.4g): rays miss or hit a light this small as "
+                  "warning: the %s, %g, is less than %g times the %s, %.4g: rays miss or hit a light this small as "
                   "float rounding falls, so uniform, bsdf and mis can render it too dark or with fireflies (light "
                   "and nee_mis sample it directly and are not affected)",
                   l.kind, l.size, kMinLightSize,

@@ -160,32 +160,32 @@ TEST(Robustness, TooSmallSceneIsAClearError) {
   }
 }
 
-// Lights smaller than 1e-4 (kMinLightSize) of the scene's span around them are named in warnings at the JSON pointer
+// Lights smaller than 1e-5 (kMinLightSize) of the scene's span around them are named in warnings at the JSON pointer
 // of their size (render and compare print them for uniform, bsdf and mis: tests/cli/usage.sh). The span from the
-// light at (0, 2, -1.5) is 4.61 (to the camera), so a radius of 4e-4 is named and 6e-4 is not; the quad light's
-// centre sees 3.775 (a corner of the floor); a quad's distance from the origin counts too (1000: 0.01 is named
+// light at (0, 2, -1.5) is 4.61 (to the camera), so a radius of 4e-5 is named and 6e-5 is not; the quad light's
+// centre sees 3.775 (a corner of the floor); a quad's distance from the origin counts too (1000: 0.005 is named
 // there, a sphere of that radius is not).
 TEST(Robustness, LightsTooSmallToHitAreNamed) {
   const std::string near = R"({"camera": {"from": [0, 3, 3], "to": [0, 0, 0]}, "materials": {"m": {"type": "diffuse"}},
     "shapes": [{"type": "quad", "origin": [-2, 0, 2], "edge_u": [4, 0, 0], "edge_v": [0, 0, -4], "material": "m"},
-               {"type": "sphere", "center": [1, 1, 0], "radius": 1e-5, "material": "m", "emission": [1, 1, 1]},
-               {"type": "quad", "origin": [0, 1, 0], "edge_u": [0.01, 0, 0], "edge_v": [0, 0, 1e-5], "material": "m",
+               {"type": "sphere", "center": [1, 1, 0], "radius": 1e-6, "material": "m", "emission": [1, 1, 1]},
+               {"type": "quad", "origin": [0, 1, 0], "edge_u": [0.01, 0, 0], "edge_v": [0, 0, 1e-6], "material": "m",
                 "emission": [1, 1, 1]}],
-    "lights": [{"type": "sphere", "center": [0, 2, -1.5], "radius": 4e-4, "radiance": [1, 1, 1]},
-               {"type": "sphere", "center": [0, 2, -1.5], "radius": 6e-4, "radiance": [1, 1, 1]},
-               {"type": "quad", "origin": [0, 2, 0], "edge_u": [3e-4, 0, 0], "edge_v": [0, 0, 1],
+    "lights": [{"type": "sphere", "center": [0, 2, -1.5], "radius": 4e-5, "radiance": [1, 1, 1]},
+               {"type": "sphere", "center": [0, 2, -1.5], "radius": 6e-5, "radiance": [1, 1, 1]},
+               {"type": "quad", "origin": [0, 2, 0], "edge_u": [3e-5, 0, 0], "edge_v": [0, 0, 1],
                 "radiance": [1, 1, 1]},
                {"type": "environment", "radiance": [1, 1, 1]}]})";
   const auto scene = load_scene_text(near, "near.json");
   const std::vector<std::string> expected = {
-      "near.json:/shapes/1/radius: warning: the emitting sphere's radius, 1e-05, is less than 0.0001 of the span of "
-      "the scene around it (3.742): rays miss or hit a light this small as float rounding falls, so uniform, bsdf "
+      "near.json:/shapes/1/radius: warning: the emitting sphere's radius, 1e-06, is less than 1e-05 times the span "
+      "of the scene around it, 3.742: rays miss or hit a light this small as float rounding falls, so uniform, bsdf "
       "and mis can render it too dark or with fireflies (light and nee_mis sample it directly and are not affected)",
-      "near.json:/shapes/2/edge_v: warning: the emitting quad's edge_v, 1e-05,",
-      "near.json:/lights/0/radius: warning: the sphere light's radius, 0.0004, is less than 0.0001 of the span of "
-      "the scene around it (4.61)",
-      "near.json:/lights/2/edge_u: warning: the quad light's edge_u, 0.0003, is less than 0.0001 of the span of "
-      "the scene around it (3.775)"};
+      "near.json:/shapes/2/edge_v: warning: the emitting quad's edge_v, 1e-06,",
+      "near.json:/lights/0/radius: warning: the sphere light's radius, 4e-05, is less than 1e-05 times the span of "
+      "the scene around it, 4.61:",
+      "near.json:/lights/2/edge_u: warning: the quad light's edge_u, 3e-05, is less than 1e-05 times the span of "
+      "the scene around it, 3.775:"};
   ASSERT_EQ(scene->small_lights.size(), expected.size());
   for (size_t i = 0; i < expected.size(); ++i)
     EXPECT_EQ(scene->small_lights[i].substr(0, expected[i].size()), expected[i]) << scene->small_lights[i];
@@ -193,14 +193,14 @@ TEST(Robustness, LightsTooSmallToHitAreNamed) {
   const std::string far = R"({"camera": {"from": [1000, 3, 3], "to": [1000, 0, 0]},
     "materials": {"m": {"type": "diffuse"}},
     "shapes": [{"type": "quad", "origin": [998, 0, 2], "edge_u": [4, 0, 0], "edge_v": [0, 0, -4], "material": "m"}],
-    "lights": [{"type": "sphere", "center": [1000, 2, 0], "radius": 0.01, "radiance": [1, 1, 1]},
-               {"type": "quad", "origin": [1000, 2, 0], "edge_u": [0.01, 0, 0], "edge_v": [0, 0, 0.01],
+    "lights": [{"type": "sphere", "center": [1000, 2, 0], "radius": 0.005, "radiance": [1, 1, 1]},
+               {"type": "quad", "origin": [1000, 2, 0], "edge_u": [0.005, 0, 0], "edge_v": [0, 0, 0.005],
                 "radiance": [1, 1, 1]}]})";
   const auto far_scene = load_scene_text(far, "far.json");
   ASSERT_EQ(far_scene->small_lights.size(), 1u);
   const std::string far_expected =
-      "far.json:/lights/1/edge_u: warning: the quad light's edge_u, 0.01, is less than 0.0001 of the distance "
-      "from the origin to its centre (1000)";
+      "far.json:/lights/1/edge_u: warning: the quad light's edge_u, 0.005, is less than 1e-05 times the distance "
+      "from the origin to its centre, 1000:";
   EXPECT_EQ(far_scene->small_lights[0].substr(0, far_expected.size()), far_expected);
 }
 

@@ -142,7 +142,7 @@ cat > "$T/tiny.json" <<'EOF'
  "shapes": [{"type": "quad", "origin": [-2, 0, 2], "edge_u": [4, 0, 0], "edge_v": [0, 0, -4], "material": "m"}],
  "lights": [{"type": "sphere", "center": [0, 2, -1.5], "radius": 1e-5, "radiance": [1e10, 1e10, 1e10]}]}
 EOF
-TINY="$T/tiny.json:/lights/0/radius: warning: the sphere light's radius, 1e-05, is less than 0.0001 of the span"
+TINY="$T/tiny.json:/lights/0/radius: warning: the sphere light's radius, 1e-05, is less than 1e-05 times the span"
 for it in uniform bsdf mis light nee_mis; do
   expect 0 "$LUMIS" render "$T/tiny.json" --width 4 --height 4 --spp 1 -q --integrator $it -o "$T/tiny.exr"
   case $it in light | nee_mis) lacks "warning" ;; *) has "$TINY" ;; esac
