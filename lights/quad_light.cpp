@@ -67,8 +67,8 @@ class QuadLight final : public Light {
   /// Radiance leaving the front side (the side of cross(edge_u, edge_v)) toward w.
   Color le(const Hit& /*on_light*/, Vec3 w) const override { return dot(n_, w) > 0 ? radiance_ : Color{}; }
 
-  /// Solid angle (two Van Oosterom-Strackee triangles) x luminance; 0 when the receiver is behind the quad or
-  /// every corner is on or below its horizon.
+  /// Solid angle (parallelogram_solid_angle, from the exact edges) x luminance; 0 when the receiver is behind the
+  /// quad or every corner is on or below its horizon.
   float importance(const LightSampleContext& ctx) const override {
     if (!faces(ctx.p)) return 0;
     const Vec3 a = o_, b = o_ + eu_, c = o_ + eu_ + ev_, d = o_ + ev_;
