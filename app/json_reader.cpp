@@ -6,6 +6,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "app/scene_error.h"
@@ -17,6 +18,17 @@ namespace {
 std::string format_number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+/// A value read from the file, with as many digits as it takes to read back as the same double (9 to 17): 9 digits
+/// printed 0.99999999999 as 1, which the message called out of [0, 1).
+std::string format_found(double v) {
+  char buf[32];
+  for (int digits = 9; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
   return buf;
 }
 
@@ -55,7 +67,7 @@ std::string describe_json(const Json& v) {
     case Json::value_t::boolean: return v.get<bool>() ? "true" : "false";
     case Json::value_t::number_integer:
     case Json::value_t::number_unsigned: return "the number " + v.dump();
-    case Json::value_t::number_float: return "the number " + format_number(v.get<double>());
+    case Json::value_t::number_float: return "the number " + format_found(v.get<double>());
     case Json::value_t::string: {
       std::string s = v.get<std::string>();
       if (s.size() > 40) s = s.substr(0, 37) + "...";

@@ -156,9 +156,11 @@ void parse_render(const JsonNode& node, RenderSettings& s) {
   if (auto v = node.find("uniform_measure"))
     s.uniform_measure = parse_enum<UniformMeasure>(*v, {"theta_phi", "solid_angle"}, "uniform_measure");
   if (auto v = node.find("mis_light_probability")) {
-    s.mis_light_probability = v->as_float(0, 1);
-    // Light sampling alone never draws the directions no light covers: the image would lose indirect light.
-    if (!(s.mis_light_probability < 1)) v->fail("expected a probability in [0, 1) (1 would lose indirect light)");
+    s.mis_light_probability = v->as_float();
+    // [0, 1), in float: light sampling alone never draws the directions no light covers, so the image would lose
+    // indirect light. One message for both ends (as_float's range wording would say [0, 1] below 0).
+    if (!(s.mis_light_probability >= 0 && s.mis_light_probability < 1))
+      v->fail_expected("a probability in [0, 1) (1 would lose indirect light)");
   }
   if (auto v = node.find("time")) s.time_budget = v->as_double(0, 1e7);
   if (auto v = node.find("exposure")) s.exposure = v->as_float(-64, 64);

@@ -138,9 +138,12 @@ TEST_F(SceneLoaderErrors, UnknownLightSelectionListsValidOnes) {
                      "valid: uniform, power, importance");
 }
 
+// [0, 1) at both ends, with what was found (below 0 it used to say [0, 1], and 1 said nothing of what it found).
 TEST_F(SceneLoaderErrors, ProbabilityOutOfRange) {
-  EXPECT_SCENE_ERROR(scene_with(R"("render": {"mis_light_probability": 1.5})"), "/render/mis_light_probability",
-                     "expected a number in [0, 1], found the number 1.5");
+  const std::string expected = "expected a probability in [0, 1) (1 would lose indirect light), found the number ";
+  for (const char* v : {"1.5", "1", "-0.1", "0.99999999999"})
+    EXPECT_SCENE_ERROR(scene_with(std::string(R"("render": {"mis_light_probability": )") + v + "}"),
+                       "/render/mis_light_probability", expected + v);
 }
 
 // Errors: cameras.
