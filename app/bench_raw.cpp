@@ -33,6 +33,7 @@ enum class Query { Intersect, Occluded };
 Rate time_rays(tbb::task_arena& arena, double min_seconds, size_t n, const std::function<size_t(size_t, size_t)>& fn,
                double* fraction = nullptr) {
   if (n == 0) return {};
+  const TracingFloatMode float_mode;
   std::atomic<size_t> count{0};
   const double c0 = process_cpu_seconds();
   const auto t0 = std::chrono::steady_clock::now();
@@ -107,7 +108,6 @@ double process_cpu_seconds() {
 struct RawBench::Impl {
   const Scene& scene;
   tbb::task_arena arena;
-  FtzObserver ftz{arena};
   std::vector<Ray> cam, bounce, shadow;
   std::vector<Ray> bounce_shuffled, shadow_shuffled;  // the same rays in a random order
   double min_seconds;
@@ -138,6 +138,7 @@ RawBench::RawBench(const Scene& scene, int width, int height, int threads, size_
   // camera-ray order (as the integrator issues them). Made in parallel with a seed per chunk.
   const size_t chunks = (cam.size() + kGrain - 1) / kGrain;
   std::vector<std::vector<Ray>> bounce_parts(chunks), shadow_parts(chunks);
+  const TracingFloatMode float_mode;
   impl_->arena.execute([&] {
     tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
       Pcg32 r(hash_combine(c, 3), 5);

@@ -85,7 +85,7 @@ RayKind ray_kind(QueryLog::Call call) {
 ReplayTiming replay_queries(const Geometry& g, const std::vector<QueryLog>& logs, int threads, bool single_rays,
                             std::optional<RayKind> only) {
   tbb::task_arena arena(std::max(1, threads));
-  FtzObserver ftz(arena);
+  const TracingFloatMode float_mode;
   ReplayTiming out;
   for (const QueryLog& log : logs)
     for (const QueryLog::Entry& e : log.calls)

@@ -54,7 +54,7 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const int threads = options.threads > 0 ? std::min(options.threads, cores) : cores;
   tbb::task_arena arena(threads);
-  FtzObserver ftz(arena);
+  const TracingFloatMode float_mode;
   Camera camera = scene.camera;
   camera.prepare(width, height);
   const SamplerType sampler_type = scene.settings.sampler;
