@@ -84,8 +84,8 @@ RayKind ray_kind(QueryLog::Call call) {
 
 ReplayTiming replay_queries(const Geometry& g, const std::vector<QueryLog>& logs, int threads, bool single_rays,
                             std::optional<RayKind> only) {
+  const TracingFloatMode float_mode;  // before the arena: it takes the mode it is initialized in
   tbb::task_arena arena(std::max(1, threads));
-  const TracingFloatMode float_mode;
   ReplayTiming out;
   for (const QueryLog& log : logs)
     for (const QueryLog::Entry& e : log.calls)

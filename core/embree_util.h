@@ -59,23 +59,24 @@ inline void to_embree16(const Ray* rays, int n, RTCRayHit16& p, int* valid) {
   }
 }
 
-/// The floating-point mode every ray query and shading computation of a render runs in: IEEE, with gradual
-/// underflow (flush-to-zero and denormals-are-zero off), whatever the caller's mode; the caller's is restored at the
-/// end of the scope. Set on the thread that starts the parallel work: TBB runs every task of a parallel loop, on any
-/// worker, in the mode of the thread that started it. Not Embree's advice (flush-to-zero, for speed): at scene scales
-/// near 1e-11, Embree's products of three lengths are denormals, and flushed to zero they let 39,032 of 560,469 rays
-/// meet the surface they leave (Geometry.SpawnedRaysNeverMeetTheirSurfaceAgain; 25,999 with stop 58's 8 times larger
-/// bound), and rendered the 1e-11 box 46 % too dark. No slower on the shipped scenes, which make no denormals
-/// (docs/performance.md).
+/// The floating-point mode every ray query and shading computation of a render runs in, whatever the caller's: the
+/// default SSE mode (round to nearest, every exception masked, flush-to-zero and denormals-are-zero off, MXCSR
+/// 0x1F80); the caller's is restored at the end of the scope. Set on the thread that starts the parallel work, before
+/// its arena's first execute(): a TBB arena takes the mode of the thread that initializes it and runs every task in
+/// it, on every worker (oneTBB's "Floating-point Settings"). Not Embree's advice (flush-to-zero, for speed): at scene
+/// scales near 1e-11, Embree's products of three lengths are denormals, and flushed to zero they let 39,032 of
+/// 560,469 rays meet the surface they leave (Geometry.SpawnedRaysNeverMeetTheirSurfaceAgain; 25,999 with stop 58's 8
+/// times larger bound), and rendered the 1e-11 box 46 % too dark. No slower on the shipped scenes, which make no
+/// denormals (docs/performance.md).
 class TracingFloatMode {
  public:
-  TracingFloatMode() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ & ~kFlush); }
+  TracingFloatMode() : saved_(_mm_getcsr()) { _mm_setcsr(kDefault); }
   ~TracingFloatMode() { _mm_setcsr(saved_); }
   TracingFloatMode(const TracingFloatMode&) = delete;
   TracingFloatMode& operator=(const TracingFloatMode&) = delete;
 
  private:
-  static constexpr unsigned kFlush = _MM_FLUSH_ZERO_ON | _MM_DENORMALS_ZERO_ON;
+  static constexpr unsigned kDefault = 0x1F80;
   unsigned saved_;
 };
 

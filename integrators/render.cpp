@@ -53,8 +53,8 @@ RenderStats render(const Scene& scene, const Integrator& integrator, Film& film,
   // more threads than cores are capped here. The image does not depend on the thread count.
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const int threads = options.threads > 0 ? std::min(options.threads, cores) : cores;
+  const TracingFloatMode float_mode;  // before the arena: it takes the mode it is initialized in
   tbb::task_arena arena(threads);
-  const TracingFloatMode float_mode;
   Camera camera = scene.camera;
   camera.prepare(width, height);
   const SamplerType sampler_type = scene.settings.sampler;
