@@ -3,8 +3,6 @@
 #pragma once
 
 #include <embree3/rtcore.h>
-#include <pmmintrin.h>
-#include <tbb/task_arena.h>
 #include <xmmintrin.h>
 
 #include "core/geometry.h"

@@ -67,10 +67,6 @@ SphericalRect make_spherical_rect(Vec3 p, Vec3 origin, Vec3 ex, Vec3 ey) {
   return r;
 }
 
-}  // namespace
-
-namespace {
-
 // General-length form of Van Oosterom & Strackee on the corners relative to the receiver, so no normalisation of
 // near-zero vectors is needed.
 double triangle_solid_angle_d(D3 da, D3 db, D3 dc) {
