@@ -89,17 +89,28 @@ inline constexpr float kErrorScale = 8 * 0x1p-24f;
 inline Ray spawn_ray(const Hit& from, Vec3 w) {
   return {offset_ray_origin(from.p, from.p_error, from.ng, w), w, 0, INFINITY};
 }
-/// spawn_ray_to from an origin already offset off its surface (offset_ray_origin's result toward the target).
+/// spawn_ray_to from an origin already offset off its surface (offset_ray_origin's result toward the target). The
+/// segment o -> target stops where it is the target's projected error bound (off) short of the target's surface: it
+/// keeps its direction, so it stands for part of the true segment. Only when that would take half of it or more (a
+/// segment nearly parallel to the surface, or an origin within a few bounds of it) does it end instead at the target
+/// moved off the surface along its normal, toward o, by off (pbrt-v4's SpawnRayTo). That move used to be made for
+/// every ray: it turns the segment, and far from the origin, where off is large, the turned segments met surfaces
+/// the true ones miss (a ceiling above a light's outline) or missed ones they meet (the edge of a plate under it).
 inline Ray shadow_ray(Vec3 o, Vec3 target, Vec3 target_n, float target_error) {
+  const Vec3 d = target - o;
+  const float along = std::abs(dot(d, target_n)), off = dot(abs(target_n), Vec3(target_error));
+  // No rounding guard needed: every light's bound holds kErrorScale x dist, so off / along >= kErrorScale (8 ulps of
+  // 1), and rounding 1 - off / along gives back at most a sixteenth of it.
+  if (2 * off < along) [[likely]] return {o, d, 0, 1 - off / along};
   const Vec3 t = offset_ray_origin(target, Vec3(target_error), target_n, o - target);
   return {o, t - o, 0, 1};
 }
 /// Shadow ray from surface point `from` to a world point on a light with surface normal target_n and error bound
-/// target_error (per axis): both ends are offset off their surfaces toward each other by their error bounds
-/// (pbrt-v4's SpawnRayTo), and the segment ends at the offset target. Without the target's offset, a light point
-/// rounded into its own surface (far from the origin, where floats are coarse) was shadowed by the light itself;
-/// with it, no further margin is needed: the segment used to stop 1e-4 of its length short (pbrt-v4's
-/// ShadowEpsilon), which hid an occluder that close to a light (a ceiling 1e-4 below a light 2 units away).
+/// target_error (per axis): both ends stop off their surfaces by their error bounds (shadow_ray). Without the
+/// target's margin, a light point rounded into its own surface (far from the origin, where floats are coarse) was
+/// shadowed by the light itself; with it, no further margin is needed: the segment used to stop 1e-4 of its length
+/// short (pbrt-v4's ShadowEpsilon), which hid an occluder that close to a light (a ceiling 1e-4 below a light 2
+/// units away).
 inline Ray spawn_ray_to(const Hit& from, Vec3 target, Vec3 target_n, float target_error) {
   return shadow_ray(offset_ray_origin(from.p, from.p_error, from.ng, target - from.p), target, target_n, target_error);
 }

@@ -160,7 +160,7 @@ class MeshLight final : public Light {
     const size_t t = ch.t;
     const Vec3 a = vertex(t, 0), b = vertex(t, 1), c = vertex(t, 2), n = normals_[t];
     Vec3 wi, p_light, bary;
-    float dist, pdf;
+    float dist, pdf, err;
     // Spherical sampling fails for reasons of geometry only, never of u, so the fallback is a function of
     // (receiver, triangle) that pdf() reproduces.
     if (ss) {
@@ -171,6 +171,8 @@ class MeshLight final : public Light {
       if (!(dist > 0)) return std::nullopt;
       p_light = ctx.p + wi * dist;
       pdf = ss->pdf;
+      // From the receiver and the distance, whose error comes from a - p, within dist + edges of the receiver.
+      err = sampled_point_error(ctx.p, dist, max_component(abs(b - a)) + max_component(abs(c - a)));
       if (texture_ || mask_) bary = barycentrics(t, p_light);  // only a texture's or a mask's lookup needs them
     } else {
       const Vec2 b01 = sample_uniform_triangle(ch.v);
@@ -184,13 +186,11 @@ class MeshLight final : public Light {
       const float cos_l = std::abs(dot(n, wi));
       if (!(cos_l > 0)) return std::nullopt;
       pdf = dist2 / (cos_l * area_[t]);
+      err = sampled_point_error({}, dist, 3 * max_component(max(abs(a), max(abs(b), abs(c)))));  // from the corners
     }
     if (mask_ && alpha_at(*mask_, static_cast<unsigned>(t), bary.y, bary.z) < mask_->alpha->cutoff)
       return std::nullopt;
     pdf *= triangles_.pmf(t);
-    // Either way p_light is computed from the receiver and the triangle's corners.
-    const float extent = max_component(max(abs(a), max(abs(b), abs(c))));
-    const float err = sampled_point_error(ctx.p, dist, 3 * extent);
     return std::make_optional<LightSample>(radiance_at(t, bary), wi, dist, pdf, p_light, n, err);
   }
   Vec3 vertex(size_t t, int k) const { return positions_[indices_[3 * t + k]]; }

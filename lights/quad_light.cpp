@@ -20,14 +20,15 @@ class QuadLight final : public Light {
     // rounding; anything further off is a parallelogram and is sampled by area.
     const float lu = length(eu), lv = length(ev);
     is_rectangle_ = lu > 0 && lv > 0 && std::abs(dot(eu, ev)) <= 1e-5f * lu * lv;
-    extent_ = max_component(abs(origin)) + max_component(abs(eu)) + max_component(abs(ev));
+    edges_ = max_component(abs(eu)) + max_component(abs(ev));
+    extent_ = max_component(abs(origin)) + edges_;
   }
 
   /// Solid angle at ctx.p; nullopt when the receiver is behind or in the plane (nothing is emitted toward it).
   std::optional<LightSample> sample(const LightSampleContext& ctx, Vec2 u) const override {
     if (!faces(ctx.p)) return std::nullopt;
     Vec3 wi, p_light;
-    float dist, pdf;
+    float dist, pdf, err;
     // sample_spherical_rectangle fails for reasons of geometry only (never of u): then every u falls back to area.
     const auto ss = method_ == QuadSampling::SphericalRectangle && is_rectangle_
                         ? sample_spherical_rectangle(ctx.p, o_, eu_, ev_, u)
@@ -39,6 +40,8 @@ class QuadLight final : public Light {
       dist = dot(o_ - ctx.p, n_) / denom;
       p_light = ctx.p + wi * dist;
       pdf = ss->pdf;
+      // From the receiver and the distance, whose error comes from o - p, within dist + edges of the receiver.
+      err = sampled_point_error(ctx.p, dist, edges_);
     } else {
       p_light = o_ + eu_ * u.x + ev_ * u.y;
       const Vec3 to_p = p_light - ctx.p;
@@ -49,9 +52,8 @@ class QuadLight final : public Light {
       const float cos_l = -dot(n_, wi);
       if (!(cos_l > 0)) return std::nullopt;
       pdf = dist2 / (cos_l * area_);
+      err = sampled_point_error({}, dist, extent_);  // from the corner and the edges
     }
-    // Either way p_light is computed from the receiver, the corner and the edges.
-    const float err = sampled_point_error(ctx.p, dist, extent_);
     return std::make_optional<LightSample>(radiance_, wi, dist, pdf, p_light, n_, err);
   }
 
@@ -93,7 +95,8 @@ class QuadLight final : public Light {
 
   Vec3 o_, eu_, ev_, n_;
   float area_ = 0;
-  float extent_ = 0;  ///< |origin| + |edge_u| + |edge_v| (max norms): the scale of a sampled point's rounding
+  float edges_ = 0;   ///< |edge_u| + |edge_v| (max norms): how far a point of the quad lies from its corner
+  float extent_ = 0;  ///< |origin| + edges_: the scale of an area-sampled point's rounding
   bool is_rectangle_ = false;
   Color radiance_;
   QuadSampling method_;

@@ -184,6 +184,78 @@ TEST(Robustness, VariantsAgreeFarFromTheOrigin) {
   expect_same(a, b, "light against bsdf, the box moved by (1e5, -1e5, 1e5)");
 }
 
+// The box at (1e5, -1e5, 1e5) with its sphere light replaced by `shapes` (positions relative to the box), and a black
+// material; `light` against `bsdf`, as above.
+void expect_far_light_agrees(Json shapes, const std::string& what) {
+  const Vec3 far{1e5f, -1e5f, 1e5f};
+  Json doc = parse_json_text(moved_cornell(1, far), "cornell-far.json");
+  doc["lights"] = Json::array();
+  doc["materials"]["black"] = {{"type", "diffuse"}, {"albedo", {0, 0, 0}}};
+  const auto move = [&far](Json& v) {
+    for (int i = 0; i < 3; ++i) v[i] = v[i].get<double>() + double(far[i]);
+  };
+  for (Json& s : shapes) {
+    if (s.contains("origin")) move(s["origin"]);
+    if (s.contains("positions"))
+      for (Json& v : s["positions"]) move(v);
+    doc["shapes"].push_back(s);
+  }
+  auto scene = load_scene_text(doc.dump(), scenes_dir() + "/cornell-far.json");
+  scene->settings.integrator = "light";
+  const Rendered a = render_small(*scene, kSize, kSpp, 1, kDepth);
+  scene->settings.integrator = "bsdf";
+  const Rendered b = render_small(*scene, kSize, kSpp, 2, kDepth);
+  expect_same(a, b, "light against bsdf, " + what + ", the box moved by (1e5, -1e5, 1e5)");
+}
+
+// A mesh light: a sphere of 24 x 12 facets, radius 0.2, its top 0.05 below the ceiling. Until stop 60 a shadow ray
+// ended at its light point moved off the light along the facet's normal, by a bound from the receiver's coordinates
+// and three times the triangle's (0.19 here): toward facets near the top of the sphere's outline it ended beyond the
+// ceiling, which shadowed it. A shadow ray now ends short along itself, inside the segment it stands for.
+TEST(Robustness, MeshLightAgreesFarFromTheOrigin) {
+  constexpr int kAround = 24, kDown = 12;
+  constexpr double kPiD = 3.14159265358979323846, kR = 0.2;
+  Json positions = Json::array(), indices = Json::array();
+  positions.push_back({0, 1.75 + kR, 0});
+  for (int i = 1; i < kDown; ++i)
+    for (int j = 0; j < kAround; ++j) {
+      const double theta = kPiD * i / kDown, phi = 2 * kPiD * j / kAround;
+      positions.push_back({kR * std::sin(theta) * std::cos(phi), 1.75 + kR * std::cos(theta),
+                           kR * std::sin(theta) * std::sin(phi)});
+    }
+  positions.push_back({0, 1.75 - kR, 0});
+  const int bottom = 1 + (kDown - 1) * kAround;
+  const auto ring = [](int i, int j) { return 1 + (i - 1) * kAround + (j % kAround); };
+  for (int j = 0; j < kAround; ++j) {  // counter-clockwise seen from outside
+    for (int k : {0, ring(1, j + 1), ring(1, j)}) indices.push_back(k);
+    for (int i = 1; i + 1 < kDown; ++i)
+      for (int k : {ring(i, j), ring(i, j + 1), ring(i + 1, j + 1), ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)})
+        indices.push_back(k);
+    for (int k : {bottom, ring(kDown - 1, j), ring(kDown - 1, j + 1)}) indices.push_back(k);
+  }
+  Json sphere = {{"type", "mesh"}, {"material", "white"}, {"emission", {25, 25, 25}}};
+  sphere["positions"] = positions;
+  sphere["indices"] = indices;
+  expect_far_light_agrees(Json::array({sphere}), "a mesh sphere light");
+}
+
+// A panel light 1.8 wide, 0.1 below the ceiling, and a black plate 0.07 under half of it: a quad light, and the same
+// square as a mesh light. A sampled point's bound took the receiver's coordinates and the light's together until
+// stop 60 (0.095 for the quad, 0.19 for the mesh): shadow rays ended short of the plate and `light` lit the room
+// through it. Solid-angle samples (p + t wi) now take the receiver and the distance only (0.048), as the sphere
+// light's do.
+TEST(Robustness, PanelLightsAgreeFarFromTheOrigin) {
+  const Json plate = {{"type", "quad"}, {"origin", {-1, 1.83, -1}}, {"edge_u", {1, 0, 0}}, {"edge_v", {0, 0, 2}},
+                      {"material", "black"}};
+  const Json quad = {{"type", "quad"}, {"origin", {-0.9, 1.9, -0.9}}, {"edge_u", {1.8, 0, 0}},
+                     {"edge_v", {0, 0, 1.8}}, {"material", "white"}, {"emission", {5, 5, 5}}};
+  const Json mesh = {{"type", "mesh"}, {"material", "white"}, {"emission", {5, 5, 5}},
+                     {"positions", {{-0.9, 1.9, -0.9}, {0.9, 1.9, -0.9}, {0.9, 1.9, 0.9}, {-0.9, 1.9, 0.9}}},
+                     {"indices", {0, 1, 2, 0, 2, 3}}};  // facing down
+  expect_far_light_agrees(Json::array({quad, plate}), "a quad light over a plate");
+  expect_far_light_agrees(Json::array({mesh, plate}), "a mesh light over a plate");
+}
+
 // render() runs every tile under the floating-point mode it sets (TracingFloatMode, core/embree_util.h), not under
 // its caller's, and gives the caller's back. A TBB arena runs its tasks in the mode of the thread that initialized
 // it: the flush-to-zero mode render() used to set from a thread observer reached no task of a process's first
