@@ -171,7 +171,7 @@ class MeshLight final : public Light {
       if (!(dist > 0)) return std::nullopt;
       p_light = ctx.p + wi * dist;
       pdf = ss->pdf;
-      // From the receiver and the distance, whose error comes from a - p, within dist + edges of the receiver.
+      // From the receiver, the distance and the edges: dist comes from a - p, and the corner a is within dist + edges.
       err = sampled_point_error(ctx.p, dist, max_component(abs(b - a)) + max_component(abs(c - a)));
       if (texture_ || mask_) bary = barycentrics(t, p_light);  // only a texture's or a mask's lookup needs them
     } else {

@@ -40,7 +40,7 @@ class QuadLight final : public Light {
       dist = dot(o_ - ctx.p, n_) / denom;
       p_light = ctx.p + wi * dist;
       pdf = ss->pdf;
-      // From the receiver and the distance, whose error comes from o - p, within dist + edges of the receiver.
+      // From the receiver, the distance and the edges: dist comes from o - p, and the corner o is within dist + edges.
       err = sampled_point_error(ctx.p, dist, edges_);
     } else {
       p_light = o_ + eu_ * u.x + ev_ * u.y;

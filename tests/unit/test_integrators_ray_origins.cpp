@@ -217,6 +217,7 @@ TEST(RayOrigins, ShadowSegmentsEndShortOfTheirTargetAlongThemselves) {
       ++checked;
       const Ray r = shadow_ray(o, target, n, err);
       const double slack = 4 * 0x1p-24 * (max_component(abs(o)) + max_component(abs(target)) + len);
+      // The origin's side of the surface: +n when the origin lies in it, as offset_ray_origin picks.
       double e[3], ns = dot(o - target, n) < 0 ? -1 : 1, clearance = 0, kept = 0;
       for (int k = 0; k < 3; ++k) {
         e[k] = double(r.o[k]) + double(r.d[k]) * double(r.tmax);
