@@ -186,7 +186,8 @@ class MeshLight final : public Light {
       const float cos_l = std::abs(dot(n, wi));
       if (!(cos_l > 0)) return std::nullopt;
       pdf = dist2 / (cos_l * area_[t]);
-      err = sampled_point_error({}, dist, 3 * max_component(max(abs(a), max(abs(b), abs(c)))));  // from the corners
+      // From the corners: a x b0 + b x b1 + c x b2 rounds by under 2 units in the last place of the largest.
+      err = sampled_point_error({}, dist, max_component(max(abs(a), max(abs(b), abs(c)))));
     }
     if (mask_ && alpha_at(*mask_, static_cast<unsigned>(t), bary.y, bary.z) < mask_->alpha->cutoff)
       return std::nullopt;

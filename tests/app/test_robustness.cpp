@@ -240,10 +240,11 @@ TEST(Robustness, MeshLightAgreesFarFromTheOrigin) {
 }
 
 // A panel light 1.8 wide, 0.1 below the ceiling, and a black plate 0.07 under half of it: a quad light, and the same
-// square as a mesh light. A sampled point's bound took the receiver's coordinates and the light's together until
-// stop 60 (0.095 for the quad, 0.19 for the mesh): shadow rays ended short of the plate and `light` lit the room
-// through it. Solid-angle samples (p + t wi) now take the receiver and the distance only (0.048), as the sphere
-// light's do.
+// square as a mesh light, each sampled by solid angle and by area. A sampled point's bound took the receiver's
+// coordinates and the light's together until stop 60 (0.095 for the quad, 0.19 for the mesh; a mesh's area samples
+// 0.143 from three times its corners): shadow rays ended short of the plate and `light` lit the room through it.
+// Solid-angle samples (p + t wi) now take the receiver and the distance, area samples the light's coordinates and
+// the distance, once each (0.048).
 TEST(Robustness, PanelLightsAgreeFarFromTheOrigin) {
   const Json plate = {{"type", "quad"}, {"origin", {-1, 1.83, -1}}, {"edge_u", {1, 0, 0}}, {"edge_v", {0, 0, 2}},
                       {"material", "black"}};
@@ -252,8 +253,12 @@ TEST(Robustness, PanelLightsAgreeFarFromTheOrigin) {
   const Json mesh = {{"type", "mesh"}, {"material", "white"}, {"emission", {5, 5, 5}},
                      {"positions", {{-0.9, 1.9, -0.9}, {0.9, 1.9, -0.9}, {0.9, 1.9, 0.9}, {-0.9, 1.9, 0.9}}},
                      {"indices", {0, 1, 2, 0, 2, 3}}};  // facing down
-  expect_far_light_agrees(Json::array({quad, plate}), "a quad light over a plate");
-  expect_far_light_agrees(Json::array({mesh, plate}), "a mesh light over a plate");
+  for (const char* sampling : {"solid angle", "area"})
+    for (Json light : {quad, mesh}) {
+      if (sampling[0] == 'a') light["sampling"] = "area";
+      expect_far_light_agrees(Json::array({light, plate}), std::string("a ") + light["type"].get<std::string>() +
+                                                               " light over a plate, sampled by " + sampling);
+    }
 }
 
 // render() runs every tile under the floating-point mode it sets (TracingFloatMode, core/embree_util.h), not under
