@@ -42,8 +42,10 @@ inline float sphere_importance(const SphereEmitter& s, const LightSampleContext&
   return hidden ? 0.0f : importance;
 }
 
-/// Rounding-error bound (world units, per axis) of a sampled light point computed from receiver p and distance
-/// dist, or from the light's own coordinates, whose largest magnitudes sum to extent (LightSample::p_error).
+/// Rounding-error bound (world units, per axis) of a sampled light point (LightSample::p_error): p is the receiver
+/// when the point is computed from it (p + t wi; {} otherwise), extent the largest magnitudes of what else goes in
+/// (the light's edges, or its coordinates for an area sample). dist always counts: shadow_ray (core/ray.h) relies
+/// on every bound being at least kErrorScale x dist.
 inline float sampled_point_error(Vec3 p, float dist, float extent) {
   return (max_component(abs(p)) + dist + extent) * kErrorScale;
 }
